@@ -1,0 +1,202 @@
+"""Frequency ranges (LF, MF, HF, entire) and their gKYP matrices Φ and Ψ.
+
+A band is symmetric about ω = 0 for real signals; it is stored as the interval
+``[lower, upper]`` of non-negative frequencies (rad/s) it contains.
+
+The frequency weight of a band is ``w(ω) = [jω; 1]* Ψ [jω; 1]``, which the paper
+writes as ``[(jω)* 1] Ψ [(jω)* 1]*`` (proof of Proposition 1). It is positive
+inside the band and negative outside:
+
+* LF ``|ω| ≤ ϖ_l``:  ``w = ϖ_l² − ω²``
+* MF ``ϖ_1 ≤ ω ≤ ϖ_2``: ``w = −(ω − ϖ_1)(ω − ϖ_2)``
+* HF ``|ω| ≥ ϖ_h``:  ``w = ω² − ϖ_h²``
+
+The MF matrix is complex; its weight selects *positive* frequencies only, and is
+negative on the mirror interval ``[−ϖ_2, −ϖ_1]``. For a real system the gain is
+symmetric in ω so the gKYP lemma is unaffected, but time-domain quadratic forms
+of real signals only see ``Re Ψ`` (see :meth:`Band.real_weight`).
+"""
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._validation import as_positive
+from .exceptions import BandError
+
+__all__ = ["Band", "PHI", "band_from_spec"]
+
+#: Φ of the gKYP lemma for continuous time (the imaginary axis).
+PHI = np.array([[0.0, 1.0], [1.0, 0.0]])
+PHI.setflags(write=False)
+
+_KINDS = ("LF", "MF", "HF", "EF")
+
+
+@dataclass(frozen=True)
+class Band:
+    """A frequency range of the paper (Sec. II-A).
+
+    Use the constructors :meth:`lf`, :meth:`mf`, :meth:`hf`, :meth:`entire`.
+
+    Parameters
+    ----------
+    kind : {"LF", "MF", "HF", "EF"}
+        Low, middle, high or entire frequency range.
+    lower, upper : float
+        Non-negative band limits in rad/s: LF ``[0, ϖ_l]``, MF ``[ϖ_1, ϖ_2]``,
+        HF ``[ϖ_h, inf]``, EF ``[0, inf]``.
+
+    Examples
+    --------
+    >>> b = Band.lf(1.0)
+    >>> b.psi.real
+    array([[-1.,  0.],
+           [ 0.,  1.]])
+    >>> float(b.weight(0.5)), bool(b.contains(2.0))
+    (0.75, False)
+    """
+
+    kind: str
+    lower: float
+    upper: float
+
+    def __post_init__(self):
+        if self.kind not in _KINDS:
+            raise BandError(f"kind must be one of {_KINDS}, but found {self.kind!r}")
+        lo, hi = float(self.lower), float(self.upper)
+        if math.isnan(lo) or math.isnan(hi):
+            raise BandError(f"band limits must not be NaN, found lower={lo}, upper={hi}")
+        if lo < 0:
+            raise BandError(f"lower limit must be >= 0 rad/s, but found {lo}")
+        if not lo < hi:
+            raise BandError(f"lower limit must be below upper limit, found lower={lo}, upper={hi}")
+        expect_inf = self.kind in ("HF", "EF")
+        if math.isinf(hi) != expect_inf:
+            raise BandError(f"{self.kind} band must have upper={'inf' if expect_inf else 'finite'}, "
+                            f"found {hi}")
+        if self.kind in ("LF", "EF") and lo != 0:
+            raise BandError(f"{self.kind} band must start at 0 rad/s, found lower={lo}")
+        if self.kind in ("MF", "HF") and lo == 0:
+            raise BandError(f"{self.kind} band must have a positive lower limit, found {lo}")
+        object.__setattr__(self, "lower", lo)
+        object.__setattr__(self, "upper", hi)
+
+    # -- constructors -------------------------------------------------------------
+    @classmethod
+    def lf(cls, w_l):
+        """Low-frequency band ``|ω| ≤ w_l`` (rad/s, ``w_l > 0``)."""
+        return cls("LF", 0.0, _limit("w_l", w_l))
+
+    @classmethod
+    def mf(cls, w_1, w_2):
+        """Middle-frequency band ``w_1 ≤ |ω| ≤ w_2`` (rad/s, ``0 < w_1 < w_2``)."""
+        w1, w2 = _limit("w_1", w_1), _limit("w_2", w_2)
+        if not w1 < w2:
+            raise BandError(f"w_1 must be smaller than w_2, found w_1={w1}, w_2={w2}")
+        return cls("MF", w1, w2)
+
+    @classmethod
+    def hf(cls, w_h):
+        """High-frequency band ``|ω| ≥ w_h`` (rad/s, ``w_h > 0``)."""
+        return cls("HF", _limit("w_h", w_h), math.inf)
+
+    @classmethod
+    def entire(cls):
+        """The entire frequency range Ω_e (no restriction; Ψ = 0)."""
+        return cls("EF", 0.0, math.inf)
+
+    # -- matrices -------------------------------------------------------------------
+    @property
+    def phi(self):
+        """Φ = [[0, 1], [1, 0]] (continuous time)."""
+        return PHI
+
+    @property
+    def psi(self):
+        """Ψ of the gKYP lemma, a complex (2, 2) Hermitian array (Lemma 1)."""
+        if self.kind == "LF":
+            m = [[-1.0, 0.0], [0.0, self.upper**2]]
+        elif self.kind == "MF":
+            wc = 0.5 * (self.lower + self.upper)
+            m = [[-1.0, 1j * wc], [-1j * wc, -self.lower * self.upper]]
+        elif self.kind == "HF":
+            m = [[1.0, 0.0], [0.0, -self.lower**2]]
+        else:
+            m = [[0.0, 0.0], [0.0, 0.0]]
+        out = np.array(m, dtype=complex)
+        out.setflags(write=False)
+        return out
+
+    @property
+    def is_complex(self):
+        """True if Ψ has a non-zero imaginary part (the MF band)."""
+        return self.kind == "MF"
+
+    @property
+    def label(self):
+        """Short text label, e.g. ``'LF [0, 1]'``."""
+        hi = "∞" if math.isinf(self.upper) else f"{self.upper:g}"
+        return f"{self.kind} [{self.lower:g}, {hi}] rad/s"
+
+    # -- frequency functions --------------------------------------------------------
+    def weight(self, omega):
+        """Frequency weight ``[jω; 1]* Ψ [jω; 1]`` (real), vectorized over ``omega``.
+
+        Positive inside the band (for MF: for positive ω inside), negative outside.
+        """
+        w = np.asarray(omega, dtype=float)
+        p = self.psi
+        # conj(jω) Ψ12 + Ψ21 jω = 2 ω Im Ψ12 because Ψ is Hermitian
+        return p[0, 0].real * w**2 + p[1, 1].real + 2.0 * w * p[0, 1].imag
+
+    def real_weight(self, omega):
+        """Weight of ``Re Ψ``, i.e. what a quadratic form in a *real* signal sees.
+
+        Equals ``(w(ω) + w(−ω)) / 2``; it coincides with :meth:`weight` except for MF,
+        where it is ``−(ω² + ϖ_1 ϖ_2) < 0`` everywhere.
+        """
+        w = np.asarray(omega, dtype=float)
+        return 0.5 * (self.weight(w) + self.weight(-w))
+
+    def contains(self, omega):
+        """True where ``|omega|`` lies in the band (limits included)."""
+        a = np.abs(np.asarray(omega, dtype=float))
+        return (a >= self.lower) & (a <= self.upper)
+
+
+def _limit(name, value):
+    try:
+        return as_positive(name, value)
+    except ValueError as exc:
+        raise BandError(str(exc)) from None
+
+
+def band_from_spec(spec):
+    """Build a :class:`Band` from a dict as stored in ``data/aircraft.json``.
+
+    Parameters
+    ----------
+    spec : dict
+        ``{"kind": "LF", "w_l": 1}``, ``{"kind": "MF", "w_1": 1, "w_2": 10}``,
+        ``{"kind": "HF", "w_h": 10}`` or ``{"kind": "EF"}``.
+
+    Examples
+    --------
+    >>> band_from_spec({"kind": "MF", "w_1": 1, "w_2": 10}).label
+    'MF [1, 10] rad/s'
+    """
+    kind = spec.get("kind")
+    try:
+        if kind == "LF":
+            return Band.lf(spec["w_l"])
+        if kind == "MF":
+            return Band.mf(spec["w_1"], spec["w_2"])
+        if kind == "HF":
+            return Band.hf(spec["w_h"])
+        if kind == "EF":
+            return Band.entire()
+    except KeyError as exc:
+        raise BandError(f"band spec of kind {kind!r} lacks the key {exc.args[0]!r}") from None
+    raise BandError(f"spec['kind'] must be one of {_KINDS}, but found {kind!r}")
