@@ -15,3 +15,11 @@ from .frequency import BandPeak, band_peak, freqresp, sigma_max
 from .plant import LTISystem, Plant, aircraft, paper_bands, paper_data, paper_gains
 
 __version__ = "0.1.0"
+
+__all__ = [
+    "PHI", "Band", "band_from_spec",
+    "FdscError", "BandError", "DimensionError", "SolverError", "InfeasibleError",
+    "VerificationError", "IterationLimitError",
+    "BandPeak", "band_peak", "freqresp", "sigma_max",
+    "LTISystem", "Plant", "aircraft", "paper_bands", "paper_data", "paper_gains",
+]

@@ -147,8 +147,8 @@ def band_peak(sys, band, *, n_grid=DEFAULT_GRID_POINTS, xtol=1e-10):
     --------
     >>> sys = LTISystem([[-1.0]], [[1.0]], [[1.0]], [[0.0]])
     >>> pk = band_peak(sys, Band.hf(10.0))
-    >>> round(pk.gamma, 6), pk.omega   # 1/|j10 + 1|, at the band edge
-    (0.0995, 10.0)
+    >>> round(pk.gamma, 6), pk.omega   # 1/|j10 + 1| = 1/sqrt(101), at the band edge
+    (0.099504, 10.0)
     """
     _check_system(sys)
     if not isinstance(band, Band):

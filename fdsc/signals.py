@@ -57,7 +57,7 @@ class Sinusoids:
     --------
     >>> d = Sinusoids([1, 1, 1], [0.1, 0.2, 0.3])
     >>> round(float(d(np.array([1.0]))[0]), 6)
-    0.595233
+    0.594023
     >>> d.dominance(Band.lf(1.0))
     1.0
     """

@@ -1,0 +1,105 @@
+"""Figure helpers: each takes data returned by :mod:`fdsc.experiments` and returns Axes.
+
+Only this module imports matplotlib. No function calls ``plt.show()`` or changes
+rcParams.
+"""
+
+import math
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+__all__ = [
+    "plot_psi_weights",
+    "plot_dominance_vs_rho",
+    "plot_localized_dominance",
+    "plot_sigma_sweep",
+]
+
+BAND_COLORS = {"LF": "tab:red", "MF": "tab:green", "HF": "tab:orange", "EF": "tab:blue"}
+
+
+def _axes(ax, figsize=(7, 4)):
+    if ax is None:
+        _, ax = plt.subplots(figsize=figsize, layout="constrained")
+    return ax
+
+
+def plot_psi_weights(data, kind, ax=None, *, real_part=True):
+    """Weight ``[jω;1]*Ψ[jω;1]`` of one band over ±ω (symlog axes), band shaded.
+
+    Parameters
+    ----------
+    data : dict
+        Output of :func:`fdsc.experiments.psi_weights`.
+    kind : {"LF", "MF", "HF"}
+    ax : matplotlib Axes, optional
+    real_part : bool
+        Also draw the weight of Re Ψ (what a real signal sees).
+    """
+    ax = _axes(ax)
+    w, d = data["omega"], data[kind]
+    color = BAND_COLORS[kind]
+    ax.plot(w, d["weight"], color=color, label=r"$[j\omega;1]^*\Psi[j\omega;1]$")
+    if real_part and not np.allclose(d["weight"], d["real_weight"]):
+        ax.plot(w, d["real_weight"], color="k", ls="--", label=r"weight of Re $\Psi$ (real signals)")
+    hi = d["upper"] if math.isfinite(d["upper"]) else np.abs(w).max()
+    for sgn in (1, -1):
+        a, b = sorted((sgn * d["lower"], sgn * hi))
+        ax.axvspan(a, b, color=color, alpha=0.12, lw=0, label="band" if sgn == 1 else None)
+    ax.axhline(0, color="0.5", lw=0.8)
+    ax.set_xscale("symlog", linthresh=1e-2)
+    ax.set_yscale("symlog", linthresh=1.0)
+    ax.set_xlabel(r"$\omega$ [rad/s]")
+    ax.set_ylabel("weight [(rad/s)$^2$]")
+    ax.set_title(d["label"])
+    ax.legend(fontsize=8, loc="best")
+    return ax
+
+
+def plot_dominance_vs_rho(data, ax=None):
+    """α(Ω_3) of ``d_h + ρ_p d_l`` against ρ_p: closed form and FFT estimate."""
+    ax = _axes(ax)
+    ax.plot(data["rho_p"], data["exact"], "k-", label="closed form (mean powers)")
+    ax.plot(data["rho_p"], data["fft"], "o", mfc="none", color="tab:orange",
+            label=f"FFT of a {data['horizon']:g} s record (Hann)")
+    ax.set_xlabel(r"$\rho_p$ [-]")
+    ax.set_ylabel(r"dominance degree $\alpha(\Omega_3)$ [-]")
+    ax.legend()
+    return ax
+
+
+def plot_localized_dominance(data, ax=None):
+    """α(Ω_1, T_l) and α(Ω_3, T_l) along the piecewise disturbance, segment limits marked."""
+    ax = _axes(ax)
+    for kind, name in (("LF", r"$\alpha(\Omega_1, T_l)$"), ("HF", r"$\alpha(\Omega_3, T_l)$")):
+        ax.plot(data[kind]["t"], data[kind]["alpha"], color=BAND_COLORS[kind], label=name)
+    for b in data["breaks"][1:-1]:
+        ax.axvline(b, color="0.4", ls=":", lw=1)
+    ax.set_xlabel("window centre $t$ [s]")
+    ax.set_ylabel("time-localized dominance [-]")
+    ax.set_ylim(-0.05, 1.05)
+    ax.legend(title=f"windows of {data['window_length']:g} s")
+    return ax
+
+
+def plot_sigma_sweep(omega, curves, bands=None, ax=None):
+    """σ_max(G(jω)) curves on log-log axes, with band limits marked.
+
+    Parameters
+    ----------
+    omega : (k,) array
+    curves : dict
+        ``{label: (k,) array}``.
+    bands : iterable of float, optional
+        Frequencies of band limits to mark.
+    """
+    ax = _axes(ax)
+    for label, s in curves.items():
+        ax.loglog(omega, s, label=label)
+    for wb in bands or ():
+        ax.axvline(wb, color="0.5", ls=":", lw=1)
+    ax.set_xlabel(r"$\omega$ [rad/s]")
+    ax.set_ylabel(r"$\sigma_{max}(G(j\omega))$ [-]")
+    ax.legend()
+    return ax

@@ -1,0 +1,64 @@
+import json
+
+import numpy as np
+import pytest
+
+from fdsc.__main__ import main, to_jsonable
+from fdsc.experiments import gamma_vs_gamma_squared, printed_bounds, reproduction_record, verdict
+
+
+@pytest.mark.parametrize(
+    ("paper", "ours", "expected"),
+    [(0.3443, 0.34434, "match"), (0.3443, 0.3446, "close"), (0.3443, 0.3737, "differs"),
+     (0.1714, 1.605, "differs")],
+)
+def test_verdict(paper, ours, expected):
+    assert verdict(paper, ours) == expected
+
+
+def test_record_entries_have_the_required_fields():
+    rec = reproduction_record()
+    ids = {e["id"] for e in rec["entries"]}
+    assert {"sigma_peak", "lemma1_gamma"} <= ids
+    for e in rec["entries"]:
+        assert {"id", "source", "paper", "recomputed", "verdict", "note"} <= set(e)
+        assert e["verdict"] in ("match", "close", "differs", "not reproducible")
+        assert set(e["recomputed"]) == {"K_f1", "K_f2", "K_f3", "K_e"}
+        for per_band in e["recomputed"].values():
+            assert set(per_band) == {"LF", "MF", "HF", "EF"}
+    assert rec["environment"]["packages"]["numpy"] == np.__version__
+
+
+def test_lmi_and_peak_agree_in_the_record():
+    rec = {e["id"]: e for e in reproduction_record()["entries"]}
+    for g, per_band in rec["sigma_peak"]["recomputed"].items():
+        for b, peak in per_band.items():
+            assert abs(rec["lemma1_gamma"]["recomputed"][g][b] - peak) <= 1e-4 * peak, (g, b)
+
+
+def test_printed_bounds_rows():
+    rows = printed_bounds()
+    assert [r["gain"] for r in rows] == ["K_f1", "K_f2", "K_f3", "K_e"]
+    assert rows[1]["verdict"] == "close"  # K_f2: 0.4025 printed, 0.40279 recomputed
+
+
+def test_gamma_squared_not_gamma_bounds_the_energy_ratio():
+    rows = {r["gain"]: r for r in gamma_vs_gamma_squared()}
+    kf3 = rows["K_f3"]
+    assert kf3["simulated_ratio"] > kf3["gamma_lf"]  # statement (2) as printed fails
+    assert kf3["simulated_ratio"] < kf3["gamma_sq"]
+    # a slowly windowed tone: energy ratio → |G(jω0)|²
+    for r in rows.values():
+        assert abs(r["simulated_ratio"] - r["gain_at_omega0_sq"]) < 1e-3 * r["gain_at_omega0_sq"]
+
+
+def test_cli_writes_the_record(tmp_path, capsys):
+    assert main(["reproduce", "--out", str(tmp_path / "out")]) == 0
+    data = json.loads((tmp_path / "out" / "reproduction.json").read_text())
+    assert {"entries", "figures", "environment"} <= set(data)
+    assert "wrote" in capsys.readouterr().out
+
+
+def test_to_jsonable():
+    out = to_jsonable({"a": np.array([1.0, np.inf]), "b": 1 + 2j, "c": np.bool_(True)})
+    assert out == {"a": [1.0, "inf"], "b": {"re": 1.0, "im": 2.0}, "c": True}
