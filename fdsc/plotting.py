@@ -48,7 +48,9 @@ def plot_psi_weights(data, kind, ax=None, *, real_part=True):
         a, b = sorted((sgn * d["lower"], sgn * hi))
         ax.axvspan(a, b, color=color, alpha=0.12, lw=0, label="band" if sgn == 1 else None)
     ax.axhline(0, color="0.5", lw=0.8)
-    ax.set_xscale("symlog", linthresh=1e-2)
+    ax.set_xscale("symlog", linthresh=1e-1)
+    ticks = [-1e3, -1e2, -1e1, -1, 0, 1, 1e1, 1e2, 1e3]
+    ax.set_xticks(ticks, ["$-10^3$", "", "$-10$", "", "0", "", "$10$", "", "$10^3$"])
     ax.set_yscale("symlog", linthresh=1.0)
     ax.set_xlabel(r"$\omega$ [rad/s]")
     ax.set_ylabel("weight [(rad/s)$^2$]")
@@ -95,8 +97,10 @@ def plot_sigma_sweep(omega, curves, bands=None, ax=None):
         Frequencies of band limits to mark.
     """
     ax = _axes(ax)
-    for label, s in curves.items():
-        ax.loglog(omega, s, label=label)
+    styles = ("-", "--", "-.", ":")
+    for k, (label, s) in enumerate(curves.items()):
+        # curves of near-equal gains (K_f2 and K_e) would hide each other without distinct styles
+        ax.loglog(omega, s, ls=styles[k % len(styles)], lw=1.6, label=label)
     for wb in bands or ():
         ax.axvline(wb, color="0.5", ls=":", lw=1)
     ax.set_xlabel(r"$\omega$ [rad/s]")

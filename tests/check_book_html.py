@@ -1,0 +1,58 @@
+"""Check a built book: every page's images exist and are non-empty, every internal link resolves.
+
+Usage: ``python tests/check_book_html.py book/_build/html``. Exits non-zero on any problem.
+Run by ``.ci/run`` after the book build (a figure that silently fails to render, e.g. when a
+non-inline matplotlib backend is forced, leaves a chapter without images).
+"""
+
+import sys
+from html.parser import HTMLParser
+from pathlib import Path
+from urllib.parse import unquote, urlparse
+
+#: Chapters and the least number of figures each must show.
+MIN_IMAGES = {"frequency_ranges.html": 3, "gkyp_lemma.html": 1}
+
+
+class _Collector(HTMLParser):
+    def __init__(self):
+        super().__init__()
+        self.images, self.links = [], []
+
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        if tag == "img" and a.get("src"):
+            self.images.append(a["src"])
+        if tag == "a" and a.get("href"):
+            self.links.append(a["href"])
+
+
+def check(root):
+    root = Path(root)
+    problems = []
+    for page in sorted(root.glob("*.html")):
+        c = _Collector()
+        c.feed(page.read_text(encoding="utf-8"))
+        for src in c.images:
+            if urlparse(src).scheme:
+                problems.append(f"{page.name}: external image {src}")
+                continue
+            f = (page.parent / unquote(src)).resolve()
+            if not f.is_file() or f.stat().st_size == 0:
+                problems.append(f"{page.name}: missing or empty image {src}")
+        if len(c.images) < MIN_IMAGES.get(page.name, 0):
+            problems.append(f"{page.name}: {len(c.images)} images, expected >= {MIN_IMAGES[page.name]}")
+        for href in c.links:
+            u = urlparse(href)
+            if u.scheme or href.startswith(("#", "mailto:")):
+                continue
+            target = (page.parent / unquote(u.path)).resolve()
+            if not target.exists():
+                problems.append(f"{page.name}: broken link {href}")
+    return problems
+
+
+if __name__ == "__main__":
+    found = check(sys.argv[1] if len(sys.argv) > 1 else "book/_build/html")
+    print("\n".join(found) or "book HTML: all images present, all internal links resolve")
+    sys.exit(1 if found else 0)
