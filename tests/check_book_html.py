@@ -1,4 +1,6 @@
-"""Check a built book: every page's images exist and are non-empty, every internal link resolves.
+"""Check a built book: images exist and are non-empty, internal links resolve, nothing is fetched
+from the web when a page loads (no external scripts, stylesheets or images), and MathJax is the
+book's own copy.
 
 Usage: ``python tests/check_book_html.py book/_build/html``. Exits non-zero on any problem.
 Run by ``.ci/run`` after the book build (a figure that silently fails to render, e.g. when a
@@ -17,7 +19,7 @@ MIN_IMAGES = {"frequency_ranges.html": 3, "gkyp_lemma.html": 1}
 class _Collector(HTMLParser):
     def __init__(self):
         super().__init__()
-        self.images, self.links = [], []
+        self.images, self.links, self.loads = [], [], []
 
     def handle_starttag(self, tag, attrs):
         a = dict(attrs)
@@ -25,6 +27,10 @@ class _Collector(HTMLParser):
             self.images.append(a["src"])
         if tag == "a" and a.get("href"):
             self.links.append(a["href"])
+        if tag == "script" and a.get("src"):
+            self.loads.append(a["src"])
+        if tag == "link" and a.get("rel") in ("stylesheet", "preload") and a.get("href"):
+            self.loads.append(a["href"])
 
 
 def check(root):
@@ -40,6 +46,11 @@ def check(root):
             f = (page.parent / unquote(src)).resolve()
             if not f.is_file() or f.stat().st_size == 0:
                 problems.append(f"{page.name}: missing or empty image {src}")
+        for src in c.loads:
+            if urlparse(src).scheme in ("http", "https") or src.startswith("//"):
+                problems.append(f"{page.name}: loads {src} from the web")
+        if page.name in MIN_IMAGES and not any("_static/mathjax/" in s for s in c.loads):
+            problems.append(f"{page.name}: does not load the book's own MathJax")
         if len(c.images) < MIN_IMAGES.get(page.name, 0):
             problems.append(f"{page.name}: {len(c.images)} images, expected >= {MIN_IMAGES[page.name]}")
         for href in c.links:
@@ -54,5 +65,5 @@ def check(root):
 
 if __name__ == "__main__":
     found = check(sys.argv[1] if len(sys.argv) > 1 else "book/_build/html")
-    print("\n".join(found) or "book HTML: all images present, all internal links resolve")
+    print("\n".join(found) or "book HTML: images present, internal links resolve, no web loads")
     sys.exit(1 if found else 0)

@@ -1,0 +1,52 @@
+"""Sphinx extension: serve MathJax from the book's own static files, never from a CDN.
+
+MathJax 3 comes from the PyPI package ``django-static-mathjax`` (it ships MathJax's ``es5``
+build as plain files; Django itself is not needed). After an HTML build this extension copies
+the single-file ``tex-svg-full.js`` component (TeX input with every extension, SVG output, so no
+web fonts are loaded) and the few folders it may load on demand into ``_static/mathjax``;
+``_config.yml`` points ``mathjax_path`` at it.
+"""
+
+import importlib.util
+import shutil
+from pathlib import Path
+
+from sphinx.errors import ExtensionError
+
+BUNDLE = "tex-svg-full.js"
+ON_DEMAND = ("a11y", "ui", "input/tex/extensions")
+
+
+def mathjax_es5_dir():
+    """Folder holding MathJax's es5 build inside the installed package."""
+    spec = importlib.util.find_spec("mathjax")
+    for loc in (spec.submodule_search_locations or []) if spec else []:
+        d = Path(loc) / "static" / "mathjax" / "es5"
+        if (d / BUNDLE).is_file():
+            return d
+    raise ExtensionError("offline_mathjax: MathJax files not found; install the pinned "
+                         "django-static-mathjax package (pip install -r requirements.txt)")
+
+
+def _copy_mathjax(app, exception):
+    if exception is not None or app.builder.format != "html":
+        return
+    src = mathjax_es5_dir()
+    dst = Path(app.outdir) / "_static" / "mathjax"
+    dst.mkdir(parents=True, exist_ok=True)
+    shutil.copy2(src / BUNDLE, dst / BUNDLE)
+    for sub in ON_DEMAND:
+        shutil.copytree(src / sub, dst / sub, dirs_exist_ok=True)
+
+
+def _check_path(app, config):
+    if config.mathjax_path != f"mathjax/{BUNDLE}":
+        raise ExtensionError(f"offline_mathjax: set sphinx.config.mathjax_path to "
+                             f"'mathjax/{BUNDLE}' in _config.yml (found {config.mathjax_path!r})")
+
+
+def setup(app):
+    mathjax_es5_dir()  # fail at start-up, not after a long build
+    app.connect("config-inited", _check_path)
+    app.connect("build-finished", _copy_mathjax)
+    return {"version": "1.0", "parallel_read_safe": True, "parallel_write_safe": True}
