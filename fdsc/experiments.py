@@ -242,7 +242,7 @@ def environment():
 
     pkgs = {}
     for name in ("numpy", "scipy", "cvxpy", "clarabel", "control", "matplotlib", "numba",
-                 "jupyter-book"):
+                 "jupyter-book", "myst-nb", "playwright"):
         try:
             pkgs[name] = version(name)
         except PackageNotFoundError:

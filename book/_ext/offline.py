@@ -1,4 +1,9 @@
-"""Sphinx extension: serve MathJax from the book's own static files, never from a CDN.
+"""Sphinx extension: a book that loads nothing from the web.
+
+1. MathJax is served from the book's own static files, never from a CDN.
+2. The Thebe launcher (live code through a remote kernel, disabled in ``_config.yml``) is removed:
+   Jupyter Book adds sphinx-thebe regardless, and sphinx-thebe writes its inline script twice per
+   page (a console error: ``THEBE_JS_URL`` declared twice) naming a CDN URL.
 
 MathJax 3 comes from the PyPI package ``django-static-mathjax`` (it ships MathJax's ``es5``
 build as plain files; Django itself is not needed). After an HTML build this extension copies
@@ -45,8 +50,19 @@ def _check_path(app, config):
                              f"'mathjax/{BUNDLE}' in _config.yml (found {config.mathjax_path!r})")
 
 
+def _drop_thebe(app, pagename, templatename, context, doctree):
+    scripts = context.get("script_files")
+    if scripts is None:
+        return
+    keep = [s for s in scripts
+            if "sphinx-thebe" not in (getattr(s, "filename", None) or str(s))
+            and "THEBE_JS_URL" not in (getattr(s, "attributes", {}).get("body") or "")]
+    scripts[:] = keep
+
+
 def setup(app):
     mathjax_es5_dir()  # fail at start-up, not after a long build
     app.connect("config-inited", _check_path)
+    app.connect("html-page-context", _drop_thebe, priority=900)
     app.connect("build-finished", _copy_mathjax)
     return {"version": "1.0", "parallel_read_safe": True, "parallel_write_safe": True}
