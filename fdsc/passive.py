@@ -1,0 +1,227 @@
+"""Artefacts of the passive-controller section (Sec. VI, first part; Fig. 2; Remark 2).
+
+Plain-data functions called by the book and by :func:`fdsc.experiments.reproduction_record`.
+"""
+
+import numpy as np
+
+from .bands import Band
+from .experiments import verdict
+from .frequency import band_peak, sigma_max
+from .plant import LTISystem, Plant, aircraft, paper_bands, paper_data, paper_gains
+from .synthesis import DEFAULT_EPSILON, optimize_gain, synthesize, synthesize_hinf
+
+__all__ = [
+    "GAIN_BANDS",
+    "recompute_gains",
+    "gain_verdict",
+    "gain_comparison",
+    "sigma_curves",
+    "gap_curves",
+    "epsilon_sensitivity",
+    "sigma_sensitivity",
+    "hf_best",
+    "bound_candidates",
+    "direct_crosscheck",
+    "random_plant",
+]
+
+#: Printed gain → the band it was designed for.
+GAIN_BANDS = {"K_f1": "LF", "K_f2": "MF", "K_f3": "HF", "K_e": "EF"}
+
+
+def recompute_gains(plant=None, *, epsilon=DEFAULT_EPSILON, sigma=0.0):
+    """Synthesize LF, MF, HF (fictitious pole σ) and H∞ gains for the aircraft.
+
+    Returns
+    -------
+    dict
+        ``{"K_f1": SynthesisResult, "K_f2": ..., "K_f3": ..., "K_e": ...}``.
+    """
+    plant = aircraft() if plant is None else plant
+    bands = paper_bands()
+    return {"K_f1": synthesize(plant, bands["LF"], epsilon=epsilon),
+            "K_f2": synthesize(plant, bands["MF"], epsilon=epsilon),
+            "K_f3": synthesize(plant, bands["HF"], epsilon=epsilon, sigma=sigma),
+            "K_e": synthesize_hinf(plant)}
+
+
+def gain_verdict(paper, ours, decimals=4):
+    """``match`` if every entry agrees to the printed precision, ``close`` if the relative
+    Frobenius difference is ≤ 1 %, else ``differs``."""
+    paper, ours = np.asarray(paper, float), np.asarray(ours, float)
+    if np.all(np.abs(paper - ours) <= 0.5 * 10.0**-decimals * (1 + 1e-9)):
+        return "match"
+    if np.linalg.norm(paper - ours) <= 1e-2 * np.linalg.norm(paper):
+        return "close"
+    return "differs"
+
+
+def gain_comparison(results=None):
+    """Printed against recomputed gains, with in-band gains of both.
+
+    Returns
+    -------
+    list of dict
+        ``name, band, paper_K, ours_K, rel_diff`` (Frobenius), ``gamma_paper_gain`` (band peak
+        of the printed gain), ``gamma_lmi``, ``gamma_sweep`` (ours), poles of both, ``verdict``.
+    """
+    results = recompute_gains() if results is None else results
+    plant, printed, bands = aircraft(), paper_gains(), paper_bands()
+    rows = []
+    for name, res in results.items():
+        Kp = printed[name]
+        band = bands[GAIN_BANDS[name]]
+        rows.append({
+            "name": name, "band": band.kind, "paper_K": Kp, "ours_K": res.K,
+            "rel_diff": float(np.linalg.norm(res.K - Kp) / np.linalg.norm(Kp)),
+            "gamma_paper_gain": band_peak(plant.closed_loop(Kp), band).gamma,
+            "gamma_lmi": res.gamma_lmi, "gamma_sweep": res.gamma_sweep,
+            "poles_paper": plant.closed_loop(Kp).poles(), "poles_ours": res.poles,
+            "status": res.status, "verdict": gain_verdict(Kp, res.K)})
+    return rows
+
+
+def sigma_curves(gains, omega=None):
+    """σ_max(G(jω)) of the aircraft closed loop for each gain (the curves of Fig. 2)."""
+    omega = np.geomspace(1e-3, 1e4, 1200) if omega is None else np.asarray(omega, float)
+    plant = aircraft()
+    return {"omega": omega,
+            "sigma": {name: sigma_max(plant.closed_loop(K), omega) for name, K in gains.items()}}
+
+
+def gap_curves(K_in, candidates, omega=None):
+    """Remark 2's gap ``σ_max(G, K_in) − σ_max(G, K_out)`` for each candidate out-of-band gain."""
+    omega = np.geomspace(1e-3, 1e4, 1200) if omega is None else np.asarray(omega, float)
+    plant = aircraft()
+    s_in = sigma_max(plant.closed_loop(K_in), omega)
+    return {"omega": omega,
+            "gap": {n: s_in - sigma_max(plant.closed_loop(K), omega) for n, K in candidates.items()}}
+
+
+def epsilon_sensitivity(kind, epsilons):
+    """LMI and sweep γ of the ``kind`` design (LF or MF) over ε of the stability LMI."""
+    plant, band = aircraft(), paper_bands()[kind]
+    rows = []
+    for eps in epsilons:
+        r = synthesize(plant, band, epsilon=eps)
+        rows.append({"epsilon": float(eps), "gamma_lmi": r.gamma_lmi, "gamma_sweep": r.gamma_sweep,
+                     "K": r.K, "fast_pole": float(r.poles.real.min()), "status": r.status})
+    return rows
+
+
+def _out_of_band_peak(cl, band):
+    """Peak of σ_max outside an HF band, i.e. over |ω| ≤ ϖ_h."""
+    return band_peak(cl, Band.lf(band.lower)).gamma
+
+
+def sigma_sensitivity(sigmas, *, epsilon=DEFAULT_EPSILON):
+    """HF designs over the fictitious-pole parameter σ: LMI γ, in-band sweep, out-of-band peak."""
+    plant, band = aircraft(), paper_bands()["HF"]
+    rows = []
+    for s in sigmas:
+        r = synthesize(plant, band, epsilon=epsilon, sigma=s)
+        cl = plant.closed_loop(r.K)
+        rows.append({"sigma": float(s), "gamma_lmi": r.gamma_lmi, "gamma_sweep": r.gamma_sweep,
+                     "out_of_band": _out_of_band_peak(cl, band), "K": r.K, "status": r.status})
+    return rows
+
+
+def hf_best(sigmas=None, *, epsilon=DEFAULT_EPSILON):
+    """The HF design with the smallest certified γ over a grid of σ, beside K_f3.
+
+    Returns
+    -------
+    dict
+        ``sigma, K, gamma_lmi, in_band`` (sweep), ``out_of_band`` peak over |ω| ≤ ϖ_h, and the
+        same two numbers for the printed K_f3; ``rows`` holds the whole σ sweep.
+    """
+    sigmas = np.concatenate([[0.0], np.geomspace(1e-2, 1e2, 17)]) if sigmas is None else sigmas
+    rows = sigma_sensitivity(sigmas, epsilon=epsilon)
+    best = min(rows, key=lambda r: r["gamma_lmi"])
+    plant, band = aircraft(), paper_bands()["HF"]
+    cl3 = plant.closed_loop(paper_gains()["K_f3"])
+    return {"sigma": best["sigma"], "K": best["K"], "gamma_lmi": best["gamma_lmi"],
+            "in_band": best["gamma_sweep"], "out_of_band": best["out_of_band"],
+            "K_f3_in_band": band_peak(cl3, band).gamma, "K_f3_out_of_band": _out_of_band_peak(cl3, band),
+            "rows": rows}
+
+
+def bound_candidates(results=None):
+    """For each printed bound, the computed quantities tried to reproduce it.
+
+    Candidates: the band peak of the printed gain; the LMI γ and the band peak of our gain;
+    σ_max at ω = 0; the squared band peak (the γ/γ² slip); the band peak of each output alone;
+    the frequency (if any) where the printed gain's σ_max equals the printed number.
+
+    Returns
+    -------
+    list of dict
+        One row per gain: ``paper``, ``candidates`` (name → value), ``best`` (closest
+        candidate), ``value``, ``verdict`` of the closest, ``crossings`` (rad/s).
+    """
+    results = recompute_gains() if results is None else results
+    plant, printed, bands = aircraft(), paper_gains(), paper_bands()
+    ctrl = paper_data("controllers")
+    out = []
+    for name, K in printed.items():
+        band = bands[GAIN_BANDS[name]]
+        cl = plant.closed_loop(K)
+        peak = band_peak(cl, band).gamma
+        cands = {"band peak, printed gain": peak,
+                 "LMI gamma, our gain": results[name].gamma_lmi,
+                 "band peak, our gain": results[name].gamma_sweep,
+                 "sigma_max at w = 0": float(sigma_max(cl, [0.0])[0]),
+                 "squared band peak": peak**2}
+        for k, label in enumerate(plant.names.get("output_names", [])):
+            sub = LTISystem(cl.A, cl.B, cl.C[[k]], cl.D[[k]])
+            cands[f"band peak of output {label}"] = band_peak(sub, band).gamma
+        w = np.geomspace(1e-4, 1e5, 20001)
+        s = sigma_max(cl, w) - ctrl[name]["bound"]
+        crossings = w[np.nonzero(np.diff(np.sign(s)))[0]].tolist()
+        paper = ctrl[name]["bound"]
+        best = min(cands, key=lambda c: abs(cands[c] - paper))
+        out.append({"gain": name, "band": band.kind, "paper": paper, "candidates": cands,
+                    "best": best, "value": cands[best], "verdict": verdict(paper, cands[best]),
+                    "crossings": crossings})
+    return out
+
+
+def random_plant(rng, n=2, stable=False):
+    """A small random plant: n states, one disturbance, one control, z = [c x; u].
+
+    With ``stable=True`` A is shifted to have spectral abscissa in [-1, -0.1].
+    """
+    A = rng.standard_normal((n, n))
+    if stable:
+        A = A - (np.max(np.linalg.eigvals(A).real) + rng.uniform(0.1, 1.0)) * np.eye(n)
+    return Plant(A, rng.standard_normal((n, 1)), rng.standard_normal((n, 1)),
+                 np.vstack([rng.standard_normal((1, n)), np.zeros((1, n))]), np.zeros((2, 1)),
+                 np.array([[0.0], [1.0]]))
+
+
+def direct_crosscheck(n_plants=6, *, seed=7, kinds=("LF", "MF"), n_starts=3):
+    """LMI synthesis against direct minimization of the band peak on seeded random plants.
+
+    Half of the plants are open-loop stable, half are drawn unrestricted (mostly unstable).
+
+    Returns
+    -------
+    list of dict
+        ``plant, open_loop_stable, band, gamma_lmi, gamma_sweep`` (LMI gain), ``gamma_direct``,
+        ``lmi_excess`` = (LMI sweep − direct)/direct.
+    """
+    rng = np.random.default_rng(seed)
+    bands = {"LF": Band.lf(1.0), "MF": Band.mf(1.0, 5.0)}
+    rows = []
+    for i in range(n_plants):
+        plant = random_plant(rng, stable=i % 2 == 0)
+        for kind in kinds:
+            r = synthesize(plant, bands[kind])
+            d = optimize_gain(plant, bands[kind], r.K, n_starts=n_starts, rng=rng)
+            rows.append({"plant": i, "open_loop_stable": bool(np.all(np.linalg.eigvals(plant.A).real < 0)),
+                         "band": kind, "gamma_lmi": r.gamma_lmi,
+                         "gamma_sweep": r.gamma_sweep, "gamma_direct": d.gamma_sweep,
+                         "lmi_excess": (r.gamma_sweep - d.gamma_sweep) / d.gamma_sweep})
+    return rows
+

@@ -1,0 +1,349 @@
+"""State-feedback synthesis of the passive controllers (band-limited and H∞).
+
+The paper prints four gains but not how they were computed. The LMIs below are derived
+for this companion (``DESIGN.md``; the book's passive-controller chapter shows the steps):
+
+1. ``G`` and ``Gᵀ`` have the same singular values, so Lemma 1 is applied to the dual
+   realization ``(A_Kᵀ, C_Kᵀ, B1ᵀ, D1ᵀ)``;
+2. Finsler's lemma with the slack ``[αI; βI; 0] Xᵀ`` makes the LMI affine in
+   ``Z_A = A X + B2 Y`` and ``Z_C = C X + D2 Y``, ``K = Y X⁻¹``;
+3. by the projection lemma the restriction of the slack is lossless when the fictitious pole
+   ``λ = −β/α`` is outside the band: exact for LF and MF (α = 0, β = 1), only sufficient for
+   HF (α = 1, β = σ ≥ 0, a user choice).
+
+A band LMI alone does not make ``A_K`` Hurwitz; the Lyapunov LMI (dual form, slack
+``[εI; I] Xᵀ``) shares X and Y and enforces it.
+"""
+
+import time
+from dataclasses import dataclass
+
+import cvxpy as cp
+import numpy as np
+from scipy.optimize import minimize
+
+from ._validation import as_finite_real, as_positive
+from .bands import Band
+from .exceptions import IterationLimitError, VerificationError
+from .frequency import band_peak, sigma_max
+from .lmi import DEFAULT_MARGIN, _sym, real_embedding_parts, solve_checked
+from .plant import Plant
+
+__all__ = ["SynthesisResult", "DirectResult", "synthesize", "synthesize_hinf", "optimize_gain",
+           "DEFAULT_EPSILON", "DEFAULT_SIGMA", "SWEEP_RTOL"]
+
+#: ε of the stability LMI (slack [εI; I]Xᵀ); the chapter shows its influence.
+DEFAULT_EPSILON = 1e-2
+#: σ ≥ 0 of the HF slack [I; σI; 0]Xᵀ (fictitious pole at −σ); the chapter scans it.
+DEFAULT_SIGMA = 0.0
+#: Relative tolerance allowed between the sweep γ and the LMI γ (solver accuracy).
+SWEEP_RTOL = 1e-5
+
+
+@dataclass(frozen=True)
+class SynthesisResult:
+    """A synthesized state-feedback gain and its certificates.
+
+    Attributes
+    ----------
+    K : (m_u, n) ndarray
+        The gain, ``u = K x``.
+    band : Band
+    gamma_lmi : float
+        γ certified by the synthesis LMI.
+    gamma_sweep : float
+        A-posteriori band peak of σ_max for the closed loop with K (always ≤ gamma_lmi).
+    poles : (n,) ndarray
+        Closed-loop poles.
+    status : str
+        cvxpy status.
+    solve_time : float
+    iterations : int
+    epsilon, sigma : float
+        The parameters used (``sigma`` is NaN except for HF).
+    """
+
+    K: np.ndarray
+    band: Band
+    gamma_lmi: float
+    gamma_sweep: float
+    poles: np.ndarray
+    status: str
+    solve_time: float
+    iterations: int
+    epsilon: float
+    sigma: float
+
+
+def _check(plant, band):
+    if not isinstance(plant, Plant):
+        raise TypeError(f"plant must be an fdsc.Plant, but found {type(plant).__name__}")
+    if not isinstance(band, Band):
+        raise TypeError(f"band must be an fdsc.Band, but found {type(band).__name__}")
+
+
+def _herm_pair(n, name, cplx):
+    re = cp.Variable((n, n), symmetric=True, name=f"{name}_re")
+    im = cp.Variable((n, n), name=f"{name}_im") if cplx else None
+    return re, im
+
+
+def _neg_def(re, im, margin):
+    E = real_embedding_parts(re, im) if im is not None else re
+    return _sym(E) << -margin * np.eye(E.shape[0])
+
+
+def _pos_def(re, im, margin):
+    E = real_embedding_parts(re, im) if im is not None else re
+    return _sym(E) >> margin * np.eye(E.shape[0])
+
+
+def _finish(plant, band, X, Y, g, prob, what, t0, epsilon, sigma, stability=True):
+    status = solve_checked(prob, what)
+    elapsed = time.perf_counter() - t0
+    Xv = X.value
+    K = np.linalg.solve(Xv.T, Y.value.T).T  # K = Y X⁻¹
+    cl = plant.closed_loop(K)
+    gamma_lmi = float(np.sqrt(g.value))
+    if not cl.is_hurwitz():
+        if stability:
+            raise VerificationError(f"{what}: the returned gain does not stabilize the plant "
+                                    f"(poles {np.round(cl.poles(), 4)})", status)
+        gamma_sweep = np.inf
+    else:
+        gamma_sweep = band_peak(cl, band).gamma
+        if gamma_sweep > gamma_lmi * (1 + SWEEP_RTOL):
+            raise VerificationError(f"{what}: sweep gain {gamma_sweep:.6g} exceeds the LMI bound "
+                                    f"{gamma_lmi:.6g}", status)
+    return SynthesisResult(K, band, gamma_lmi, gamma_sweep, cl.poles(), status, elapsed,
+                           int(prob.solver_stats.num_iters or 0), epsilon, sigma)
+
+
+def synthesize(plant, band, *, epsilon=DEFAULT_EPSILON, sigma=DEFAULT_SIGMA,
+               margin=DEFAULT_MARGIN, stability=True):
+    """Band-limited state feedback minimizing the certified in-band gain γ.
+
+    Parameters
+    ----------
+    plant : Plant
+    band : Band
+        LF, MF or HF (use :func:`synthesize_hinf` for the entire range).
+    epsilon : float, optional
+        ε > 0 of the stability LMI.
+    sigma : float, optional
+        σ ≥ 0 of the HF slack (ignored for LF and MF).
+    margin : float, optional
+        Strictness margin of every LMI.
+    stability : bool, optional
+        Add the Lyapunov LMI sharing X and Y (default). Without it the band LMI alone may
+        return a destabilizing gain (then ``gamma_sweep`` is inf); it shows what the shared
+        slack costs.
+
+    Returns
+    -------
+    SynthesisResult
+
+    Raises
+    ------
+    InfeasibleError, SolverError
+        If the LMIs are infeasible or the solve fails.
+
+    Examples
+    --------
+    >>> from fdsc import aircraft
+    >>> res = synthesize(aircraft(), Band.lf(1.0))
+    >>> bool(res.gamma_sweep <= res.gamma_lmi * (1 + 1e-5)), bool(np.all(res.poles.real < 0))
+    (True, True)
+    """
+    _check(plant, band)
+    if band.kind == "EF":
+        raise ValueError("band: use synthesize_hinf for the entire frequency range")
+    epsilon = as_positive("epsilon", epsilon)
+    sigma = as_finite_real("sigma", sigma)
+    if sigma < 0:
+        raise ValueError(f"sigma must be >= 0, but found {sigma}")
+    margin = as_positive("margin", margin)
+    n, mu, p = plant.n_states, plant.n_controls, plant.C.shape[0]
+    cplx = band.is_complex
+    X = cp.Variable((n, n), name="X")
+    Y = cp.Variable((mu, n), name="Y")
+    g = cp.Variable(name="gamma_sq", nonneg=True)
+    P = _herm_pair(n, "P", cplx)
+    Q = _herm_pair(n, "Q", cplx)
+    Ps = cp.Variable((n, n), symmetric=True, name="P_s")
+    ZA = plant.A @ X + plant.B2 @ Y
+    ZC = plant.C @ X + plant.D2 @ Y
+    B1, D1 = plant.B1, plant.D1
+    psi = band.psi
+    zpn = np.zeros((n, p))
+    gI = g * np.eye(p)
+    if band.kind in ("LF", "MF"):
+        # slack [0; I; 0] Xᵀ (fictitious pole at infinity, outside LF and MF: lossless)
+        # ψ12 Q = (Re ψ12 Q_re − Im ψ12 Q_im) + j (Im ψ12 Q_re + Re ψ12 Q_im)
+        r12 = P[0] + psi[0, 1].real * Q[0] - X
+        if cplx:
+            r12 = r12 - psi[0, 1].imag * Q[1]
+        re = cp.bmat([
+            [-Q[0], r12, zpn],
+            [r12.T, psi[1, 1].real * Q[0] + ZA + ZA.T + B1 @ B1.T, ZC.T + B1 @ D1.T],
+            [zpn.T, ZC + D1 @ B1.T, D1 @ D1.T - gI]])
+        im = None
+        if cplx:
+            # imaginary parts: Ψ12 = jϖ_c multiplies Q_re; X, Y, Z are real
+            i12 = P[1] + psi[0, 1].imag * Q[0] + psi[0, 1].real * Q[1]
+            i22 = psi[1, 1].real * Q[1]
+            zp = np.zeros((p, p))
+            im = cp.bmat([[-Q[1], i12, zpn], [-i12.T, i22, zpn], [zpn.T, zpn.T, zp]])
+    else:  # HF, slack [I; σI; 0] Xᵀ
+        r12 = P[0] + ZA.T - sigma * X
+        re = cp.bmat([
+            [Q[0] - X - X.T, r12, ZC.T],
+            [r12.T, -band.lower**2 * Q[0] + sigma * (ZA + ZA.T) + B1 @ B1.T,
+             sigma * ZC.T + B1 @ D1.T],
+            [ZC, sigma * ZC + D1 @ B1.T, D1 @ D1.T - gI]])
+        im = None
+    stab = cp.bmat([[-epsilon * (X + X.T), Ps - X + epsilon * ZA.T],
+                    [Ps - X.T + epsilon * ZA, ZA + ZA.T]])
+    cons = [_neg_def(re, im, margin), _pos_def(*Q, margin)]
+    if stability:
+        cons += [Ps >> margin * np.eye(n), _sym(stab) << -margin * np.eye(2 * n)]
+    if cplx:
+        cons += [P[1] + P[1].T == 0, Q[1] + Q[1].T == 0]
+    prob = cp.Problem(cp.Minimize(g), cons)
+    t0 = time.perf_counter()
+    return _finish(plant, band, X, Y, g, prob, f"synthesis on the {band.label} band", t0,
+                   epsilon, sigma if band.kind == "HF" else float("nan"), stability)
+
+
+def synthesize_hinf(plant, *, margin=DEFAULT_MARGIN):
+    """H∞ state feedback (entire frequency range), minimizing ‖G‖∞.
+
+    Dual bounded-real lemma with ``X = Xᵀ > 0``:
+    ``[[He(Z_A) + B1B1ᵀ, Z_Cᵀ + B1D1ᵀ], [·, D1D1ᵀ − γ²I]] < 0``, ``K = Y X⁻¹``.
+
+    Examples
+    --------
+    >>> from fdsc import aircraft
+    >>> res = synthesize_hinf(aircraft())
+    >>> bool(res.gamma_sweep <= res.gamma_lmi * (1 + 1e-5))
+    True
+    """
+    if not isinstance(plant, Plant):
+        raise TypeError(f"plant must be an fdsc.Plant, but found {type(plant).__name__}")
+    margin = as_positive("margin", margin)
+    n, mu, p = plant.n_states, plant.n_controls, plant.C.shape[0]
+    X = cp.Variable((n, n), symmetric=True, name="X")
+    Y = cp.Variable((mu, n), name="Y")
+    g = cp.Variable(name="gamma_sq", nonneg=True)
+    ZA = plant.A @ X + plant.B2 @ Y
+    ZC = plant.C @ X + plant.D2 @ Y
+    B1, D1 = plant.B1, plant.D1
+    M = cp.bmat([[ZA + ZA.T + B1 @ B1.T, ZC.T + B1 @ D1.T],
+                 [ZC + D1 @ B1.T, D1 @ D1.T - g * np.eye(p)]])
+    cons = [_sym(M) << -margin * np.eye(n + p), X >> margin * np.eye(n)]
+    prob = cp.Problem(cp.Minimize(g), cons)
+    t0 = time.perf_counter()
+    return _finish(plant, Band.entire(), X, Y, g, prob, "H-infinity synthesis", t0,
+                   float("nan"), float("nan"))
+
+
+@dataclass(frozen=True)
+class DirectResult:
+    """Result of :func:`optimize_gain` (direct minimization of the band peak over K).
+
+    Attributes
+    ----------
+    K : ndarray
+    gamma_sweep : float
+        Band peak of σ_max for the closed loop with K (refined sweep).
+    n_evaluations : int
+        Objective evaluations over all starts.
+    """
+
+    K: np.ndarray
+    band: Band
+    gamma_sweep: float
+    n_evaluations: int
+
+
+def _objective_grid(band, n_grid):
+    if np.isfinite(band.upper):
+        lo = band.lower if band.lower > 0 else band.upper * 1e-4
+        w = np.geomspace(lo, band.upper, n_grid)
+        return np.concatenate([[0.0], w]) if band.lower == 0 else w
+    return np.geomspace(band.lower, band.lower * 1e4, n_grid)
+
+
+def optimize_gain(plant, band, K0, *, n_starts=4, spread=0.5, n_grid=400, maxiter=4000,
+                  k_max=None, rng=None):
+    """Minimize the band peak of σ_max directly over K (Nelder–Mead, several starts).
+
+    A non-convex, uncertified search used to cross-check the synthesis LMIs: on each start the
+    peak is evaluated on a fixed grid; the best K is then swept with refinement. Unstable
+    closed loops are rejected by a penalty.
+
+    Parameters
+    ----------
+    plant : Plant
+    band : Band
+    K0 : (m_u, n) array_like
+        First start (e.g. the LMI gain); further starts perturb it by ``spread`` (relative).
+    n_starts : int
+    spread : float
+    n_grid : int
+        Grid points of the objective.
+    maxiter : int
+        Cap on Nelder–Mead iterations per start.
+    k_max : float, optional
+        Bound on ‖K‖_F (default ``100 · max(1, ‖K0‖_F)``). The peak often keeps falling as the
+        gain grows (high-gain directions), so an unbounded search need not converge.
+    rng : numpy.random.Generator, optional
+        Source of the perturbations (seeded by the caller for reproducibility).
+
+    Returns
+    -------
+    DirectResult
+
+    Raises
+    ------
+    IterationLimitError
+        If no start converged within ``maxiter`` iterations.
+    """
+    _check(plant, band)
+    K0 = np.array(plant.closed_loop(K0) and K0, dtype=float)  # closed_loop validates the shape
+    rng = np.random.default_rng(0) if rng is None else rng
+    w = _objective_grid(band, int(n_grid))
+    k_max = 100.0 * max(1.0, float(np.linalg.norm(K0))) if k_max is None else as_positive(
+        "k_max", k_max)
+    evals = 0
+
+    # search in units of ‖K0‖ so that the simplex tolerances are relative to the gain's size
+    scale = max(1.0, float(np.linalg.norm(K0)))
+
+    def f(u):
+        nonlocal evals
+        evals += 1
+        k = scale * u
+        size = float(np.linalg.norm(k))
+        if size > k_max:
+            return 1e6 * (1.0 + size / k_max)
+        cl = plant.closed_loop(k.reshape(K0.shape))
+        worst_pole = float(np.max(np.linalg.eigvals(cl.A).real))
+        if worst_pole >= 0:
+            return 1e6 * (1.0 + worst_pole)
+        return float(sigma_max(cl, w).max())
+
+    best, converged = None, False
+    u0 = K0.ravel() / scale
+    for s in range(int(n_starts)):
+        start = u0 * (1 + spread * rng.standard_normal(K0.size)) if s else u0
+        res = minimize(f, start, method="Nelder-Mead",
+                       options={"xatol": 1e-7, "fatol": 1e-10, "maxiter": int(maxiter)})
+        converged |= bool(res.success)
+        if best is None or res.fun < best.fun:
+            best = res
+    if not converged:
+        raise IterationLimitError(f"optimize_gain: no start converged within maxiter={maxiter}")
+    K = scale * best.x.reshape(K0.shape)
+    cl = plant.closed_loop(K)
+    return DirectResult(K, band, band_peak(cl, band).gamma, evals)
