@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .experiments import reproduction_record
+from .record import reproduction_record
 
 __all__ = ["main", "to_jsonable"]
 

@@ -28,8 +28,6 @@ __all__ = [
     "gain_band_table",
     "printed_bounds",
     "gamma_vs_gamma_squared",
-    "reproduction_record",
-    "environment",
 ]
 
 #: Relative difference up to which a number that misses the printed precision is "close".
@@ -217,69 +215,3 @@ def gamma_vs_gamma_squared(omega0=0.5, *, tau=300.0, dt=0.02):
     return rows
 
 
-
-def _by_gain_band(table, key):
-    out = {}
-    for row in table:
-        out.setdefault(row["gain"], {})[row["band"]] = row[key]
-    return out
-
-
-def _paper_bounds():
-    ctrl = paper_data("controllers")
-    return {g: {ctrl[g]["band"]: ctrl[g]["bound"]} for g in GAIN_ORDER}
-
-
-def _worst(verdicts):
-    order = ("match", "close", "differs", "not reproducible")
-    return max(verdicts, key=order.index)
-
-
-def environment():
-    """Versions of Python and of the numerical packages (for the record and the book)."""
-    import platform
-    from importlib.metadata import PackageNotFoundError, version
-
-    pkgs = {}
-    for name in ("numpy", "scipy", "cvxpy", "clarabel", "control", "matplotlib", "numba",
-                 "jupyter-book", "myst-nb", "playwright"):
-        try:
-            pkgs[name] = version(name)
-        except PackageNotFoundError:
-            pkgs[name] = None
-    return {"python": platform.python_version(), "platform": platform.platform(),
-            "packages": pkgs}
-
-
-def reproduction_record():
-    """The reproduction record ``{"entries": [...], "figures": {...}, "environment": {...}}``.
-
-    Entries (ids fixed by the issues): ``sigma_peak`` (band peaks of σ_max for each
-    printed gain and band, against the printed bounds) and ``lemma1_gamma`` (Lemma 1's
-    certified γ for the same pairs, against the same bounds).
-    """
-    table = gain_band_table()
-    bounds = printed_bounds(table)
-    per_gain = {b["gain"]: b["verdict"] for b in bounds}
-    lmi_verdicts = {b["gain"]: verdict(b["paper"], b["lmi_gamma"]) for b in bounds}
-    worst_rel = max(abs(r["rel_diff"]) for r in table)
-    ratios = ", ".join(f"{b['gain']} {b['paper']}/{b['peak']:.4f}" for b in bounds)
-    entries = [
-        {"id": "sigma_peak", "source": "Sec. VI, bounds printed beside K_f1, K_f2, K_f3, K_e; Fig. 2",
-         "paper": _paper_bounds(), "recomputed": _by_gain_band(table, "peak"),
-         "omega_peak": _by_gain_band(table, "omega_peak"),
-         "verdict": _worst(per_gain.values()), "verdicts": per_gain,
-         "note": ("sup of sigma_max(G(jw)) over each band (grid + local refinement, tail bound "
-                  "for HF/EF) for the printed gains; in-band printed/recomputed: " + ratios +
-                  ". Which quantity the printed bounds are is examined in the passive-controller "
-                  "chapter.")},
-        {"id": "lemma1_gamma", "source": "Lemma 1 (eq. gKYP_LMI) applied to the printed gains",
-         "paper": _paper_bounds(), "recomputed": _by_gain_band(table, "lmi_gamma"),
-         "max_eig": _by_gain_band(table, "max_eig"), "status": _by_gain_band(table, "status"),
-         "verdict": _worst(lmi_verdicts.values()), "verdicts": lmi_verdicts,
-         "note": (f"smallest gamma certified by the gKYP LMI (cvxpy + Clarabel, real embedding "
-                  f"for MF); equals the swept band peak within {worst_rel:.1e} relative on all "
-                  f"16 gain/band pairs, so Lemma 1 is lossless here and the printed bounds are "
-                  f"not Lemma 1's value for the printed gains either.")},
-    ]
-    return {"entries": entries, "figures": {}, "environment": environment()}

@@ -14,6 +14,8 @@ __all__ = [
     "plot_dominance_vs_rho",
     "plot_localized_dominance",
     "plot_sigma_sweep",
+    "plot_hf_sigma_scan",
+    "plot_gap",
 ]
 
 BAND_COLORS = {"LF": "tab:red", "MF": "tab:green", "HF": "tab:orange", "EF": "tab:blue"}
@@ -106,4 +108,44 @@ def plot_sigma_sweep(omega, curves, bands=None, ax=None):
     ax.set_xlabel(r"$\omega$ [rad/s]")
     ax.set_ylabel(r"$\sigma_{max}(G(j\omega))$ [-]")
     ax.legend()
+    return ax
+
+
+def plot_hf_sigma_scan(rows, ax=None, *, reference=None):
+    """HF designs against σ: LMI γ, in-band sweep γ and out-of-band peak (log axes).
+
+    Parameters
+    ----------
+    rows : list of dict
+        Output of :func:`fdsc.passive.sigma_sensitivity` (σ = 0 is drawn at the left edge).
+    reference : dict, optional
+        ``{"in_band": ..., "out_of_band": ...}`` of a reference gain (K_f3), drawn as lines.
+    """
+    ax = _axes(ax)
+    pos = [r for r in rows if r["sigma"] > 0]
+    s = [r["sigma"] for r in pos]
+    ax.loglog(s, [r["gamma_lmi"] for r in pos], "o-", label=r"LMI bound $\gamma$ (in band)")
+    ax.loglog(s, [r["gamma_sweep"] for r in pos], "s--", label="in-band peak (sweep)")
+    ax.loglog(s, [r["out_of_band"] for r in pos], "^:", label=r"out-of-band peak ($|\omega| \leq 10$)")
+    if reference:
+        ax.axhline(reference["in_band"], color="tab:green", lw=1, label="K_f3 in band")
+        ax.axhline(reference["out_of_band"], color="tab:red", lw=1, label="K_f3 out of band")
+    ax.set_xlabel(r"fictitious-pole parameter $\sigma$ [rad/s]")
+    ax.set_ylabel(r"$\sigma_{max}$ peak [-]")
+    ax.legend(fontsize=8)
+    return ax
+
+
+def plot_gap(data, ax=None, *, band_limits=()):
+    """Remark 2's gap function for each candidate out-of-band gain (semilog-x, zero marked)."""
+    ax = _axes(ax)
+    for label, g in data["gap"].items():
+        ax.semilogx(data["omega"], g, label=label)
+    ax.axhline(0, color="0.4", lw=0.8)
+    for wb in band_limits:
+        ax.axvline(wb, color="0.5", ls=":", lw=1)
+    ax.set_yscale("symlog", linthresh=1e-1)
+    ax.set_xlabel(r"$\omega$ [rad/s]")
+    ax.set_ylabel(r"gap$(K^{in}, K^{out}, \omega)$ [-]")
+    ax.legend(fontsize=8)
     return ax

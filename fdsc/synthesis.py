@@ -345,5 +345,10 @@ def optimize_gain(plant, band, K0, *, n_starts=4, spread=0.5, n_grid=400, maxite
     if not converged:
         raise IterationLimitError(f"optimize_gain: no start converged within maxiter={maxiter}")
     K = scale * best.x.reshape(K0.shape)
-    cl = plant.closed_loop(K)
-    return DirectResult(K, band, band_peak(cl, band).gamma, evals)
+    gamma = band_peak(plant.closed_loop(K), band).gamma
+    if plant.closed_loop(K0).is_hurwitz():
+        # the search ran on a grid; keep the start if the refined sweep rates it better
+        gamma0 = band_peak(plant.closed_loop(K0), band).gamma
+        if gamma0 < gamma:
+            K, gamma = K0, gamma0
+    return DirectResult(K, band, gamma, evals)

@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 
 from fdsc.__main__ import main, to_jsonable
-from fdsc.experiments import gamma_vs_gamma_squared, printed_bounds, reproduction_record, verdict
+from fdsc.experiments import gamma_vs_gamma_squared, printed_bounds, verdict
+from fdsc.record import reproduction_record
 
 
 @pytest.mark.parametrize(
@@ -20,12 +21,20 @@ def test_record_entries_have_the_required_fields():
     rec = reproduction_record()
     ids = {e["id"] for e in rec["entries"]}
     assert {"sigma_peak", "lemma1_gamma"} <= ids
+    assert {"K_f1", "K_f2", "K_f3", "K_e", "bound_f1", "bound_f2", "bound_f3", "bound_e",
+            "hf_best"} <= ids
     for e in rec["entries"]:
         assert {"id", "source", "paper", "recomputed", "verdict", "note"} <= set(e)
         assert e["verdict"] in ("match", "close", "differs", "not reproducible")
-        assert set(e["recomputed"]) == {"K_f1", "K_f2", "K_f3", "K_e"}
-        for per_band in e["recomputed"].values():
+    by_id = {e["id"]: e for e in rec["entries"]}
+    for key in ("sigma_peak", "lemma1_gamma"):
+        assert set(by_id[key]["recomputed"]) == {"K_f1", "K_f2", "K_f3", "K_e"}
+        for per_band in by_id[key]["recomputed"].values():
             assert set(per_band) == {"LF", "MF", "HF", "EF"}
+    assert by_id["K_f3"]["verdict"] == "differs" and by_id["K_e"]["verdict"] == "close"
+    assert by_id["bound_f3"]["verdict"] == "not reproducible"
+    hb = by_id["hf_best"]["recomputed"]
+    assert hb["in_band"] <= hb["gamma_lmi"] * (1 + 1e-5)
     assert rec["environment"]["packages"]["numpy"] == np.__version__
 
 
