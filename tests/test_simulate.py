@@ -1,0 +1,96 @@
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from fdsc import LTISystem, aircraft, paper_gains
+from fdsc.selectiveness import paper_modes
+from fdsc.signals import Sinusoids, lf_disturbance, mixed_disturbance, piecewise_disturbance
+from fdsc.simulate import particular, simulate, time_grid
+
+
+def modal(A, y0, t):
+    lam, V = np.linalg.eig(A)
+    return ((np.exp(np.outer(t, lam)) * np.linalg.solve(V, y0)) @ V.T).real
+
+
+def test_lti_matches_closed_form():
+    cl = aircraft().closed_loop(paper_gains()["K_f1"])
+    d = lf_disturbance()
+    t = time_grid(100.0, 1e-3)
+    sim = simulate(cl, d, t, x0=[0.1, -0.2])
+    xp, _ = particular(cl.A, cl.B, d, t)
+    ref = xp + modal(cl.A, np.array([0.1, -0.2]) - xp[0], t)  # x = x_p + e^{At}(x0 − x_p(0))
+    assert_allclose(sim.x, ref, atol=1e-12)
+    assert_allclose(sim.xdot, sim.x @ cl.A.T + np.outer(sim.d, cl.B[:, 0]), atol=1e-12)
+
+
+def test_lti_energy_equals_closed_form():
+    # steady state of a single tone: z = Im(Z e^{jωt}), ∫ z² over whole periods = |Z|² T / 2
+    sys = LTISystem([[-2.0]], [[1.0]], [[1.0]], [[0.0]])
+    w = 1.0
+    d = Sinusoids([1.0], [w])
+    T = 2 * np.pi * 200
+    xp, _ = particular(sys.A, sys.B, d, [0.0])
+    sim = simulate(sys, d, time_grid(T, T / 400_000), x0=xp[0])  # start on the steady state
+    Z = 1 / (1j * w + 2)
+    assert_allclose(sim.energy(), abs(Z) ** 2 * T / 2, rtol=1e-9)
+
+
+def test_numba_kernel_equals_numpy_reference():
+    pm = paper_modes()
+    t = time_grid(5.0, 1e-3)
+    for law in ("previous", "candidate"):
+        kw = dict(law_bands=pm["bands"], law_Q=pm["Q"], law=law, x0=[0.01, -0.02])
+        a = simulate(pm["modes"], mixed_disturbance(0.1), t, kernel="numba", **kw)
+        b = simulate(pm["modes"], mixed_disturbance(0.1), t, kernel="numpy", **kw)
+        assert np.array_equal(a.sigma, b.sigma)
+        assert_allclose(a.x, b.x, rtol=1e-12, atol=1e-15)
+
+
+def test_switching_law_picks_the_argmax():
+    pm = paper_modes()
+    t = time_grid(2.0, 1e-3)
+    sim = simulate(pm["modes"], mixed_disturbance(0.2), t, law_bands=pm["bands"], law_Q=pm["Q"])
+    A = [m.A for m in pm["modes"]]
+    prev = 0
+    for k in range(0, t.size, 37):
+        prev = sim.sigma[k - 1] if k else 0
+        xd = A[prev] @ sim.x[k] + pm["modes"][0].B[:, 0] * sim.d[k]
+        v = np.concatenate([xd, sim.x[k]])
+        scores = [v @ np.kron(b.psi.real, Q) @ v for b, Q in zip(pm["bands"], pm["Q"], strict=True)]
+        assert sim.sigma[k] == int(np.argmax(scores))
+
+
+def test_piecewise_run_equals_restarted_runs():
+    # the piecewise run is the LTI run of each segment restarted from the state at the break
+    cl = aircraft().closed_loop(paper_gains()["K_f1"])
+    d = piecewise_disturbance(5.0, 0.2, 0.1)  # HF on [0, 5), LF on [5, 6), HF on [6, 11)
+    t = time_grid(11.0, 1e-3)
+    sim = simulate(cl, d, t)
+    first = simulate(cl, d.parts[0], t[:5001])
+    assert_allclose(sim.x[:5001], first.x, atol=1e-13)
+    second = simulate(cl, d.parts[1], t[5000:6001] - 0.0, x0=sim.x[5000])
+    assert_allclose(sim.x[5000:6001], second.x, atol=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("call", "match"),
+    [
+        (lambda m, b, q: time_grid(1.0, 0.0), "dt must be a positive"),
+        (lambda m, b, q: time_grid(1.0, 0.3), "multiple of dt"),
+        (lambda m, b, q: simulate(m, lf_disturbance(), time_grid(1, 0.1), law_bands=b[:1], law_Q=q),
+         "one entry per mode"),
+        (lambda m, b, q: simulate(m, lf_disturbance(), time_grid(1, 0.1), law_bands=b,
+                                  law_Q=[q[0], -q[1]]), "Q must be positive definite"),
+        (lambda m, b, q: simulate(m, lf_disturbance(), time_grid(1, 0.1), law_bands=b, law_Q=q,
+                                  law="future"), "law must be one of"),
+        (lambda m, b, q: simulate(m, piecewise_disturbance(0.55, 0.2, 0.1), time_grid(1, 0.1),
+                                  law_bands=b, law_Q=q), "not on the grid"),
+        (lambda m, b, q: simulate(m, lf_disturbance(), np.array([0.0, 0.1, 0.3]), law_bands=b,
+                                  law_Q=q), "uniform"),
+    ],
+)
+def test_bad_simulation_inputs(call, match):
+    pm = paper_modes()
+    with pytest.raises(ValueError, match=match):
+        call(pm["modes"], pm["bands"], pm["Q"])
