@@ -16,6 +16,9 @@ __all__ = [
     "plot_sigma_sweep",
     "plot_hf_sigma_scan",
     "plot_gap",
+    "plot_power_vs_alpha",
+    "plot_epf_series",
+    "plot_prop1_cases",
 ]
 
 BAND_COLORS = {"LF": "tab:red", "MF": "tab:green", "HF": "tab:orange", "EF": "tab:blue"}
@@ -148,4 +151,59 @@ def plot_gap(data, ax=None, *, band_limits=()):
     ax.set_xlabel(r"$\omega$ [rad/s]")
     ax.set_ylabel(r"gap$(K^{in}, K^{out}, \omega)$ [-]")
     ax.legend(fontsize=8)
+    return ax
+
+
+def plot_power_vs_alpha(data, ax=None):
+    """Steady-state average FD-EPF against α(Ω_3) (symlog y), sign changes marked."""
+    ax = _axes(ax)
+    for label, v in data["curves"].items():
+        line, = ax.plot(data["alpha"], v, label=label)
+        a = data["crossing"].get(label)
+        if a is not None:
+            ax.axvline(a, color=line.get_color(), ls=":", lw=1)
+    ax.axhline(0, color="0.4", lw=0.8)
+    ax.set_yscale("symlog", linthresh=1.0)
+    ax.set_xlabel(r"dominance degree $\alpha(\Omega_3)$ of the disturbance [-]")
+    ax.set_ylabel(r"average FD-EPF $P_a$ [-]")
+    ax.legend(fontsize=8)
+    return ax
+
+
+def plot_epf_series(data, ax=None):
+    """Instantaneous FD-EPF of both law terms (thin) and their running averages (thick)."""
+    ax = _axes(ax)
+    for kind, color in (("LF", BAND_COLORS["LF"]), ("HF", BAND_COLORS["HF"])):
+        ax.plot(data["t"], data["P_t"][kind], color=color, lw=0.4, alpha=0.5,
+                label=f"$P_t$, {kind} term")
+        ax.plot(data["t"], data["P_a"][kind], color=color, lw=2, label=f"running $P_a$, {kind} term")
+    ax.axhline(0, color="0.4", lw=0.8)
+    ax.set_yscale("symlog", linthresh=1e-3)
+    ax.set_xlabel("$t$ [s]")
+    ax.set_ylabel("FD-EPF [-]")
+    ax.set_title(f"{data['gain']} loop, {data['disturbance']} disturbance")
+    ax.legend(fontsize=7, ncol=2)
+    return ax
+
+
+def plot_prop1_cases(rows, ax=None):
+    """S(Ω^in) against S(Ω^out) for every case (symlog axes); the proposition's quadrant shaded."""
+    ax = _axes(ax)
+    markers = {"infinite, real Ψ": "o", "infinite, MF": "s", "window from rest": "^"}
+    for kind, m in markers.items():
+        sel = [r for r in rows if r["kind"] == kind]
+        if sel:
+            ax.scatter([r["S_in"] for r in sel], [r["S_out"] for r in sel], marker=m, s=18,
+                       facecolors="none", edgecolors=["tab:green" if r["passed"] else "tab:red"
+                                                     for r in sel], label=kind)
+    ax.set_xscale("symlog", linthresh=1e-4)
+    ax.set_yscale("symlog", linthresh=1e-4)
+    ax.axvline(0, color="0.4", lw=0.8)
+    ax.axhline(0, color="0.4", lw=0.8)
+    x0, x1 = ax.get_xlim()
+    y0, y1 = ax.get_ylim()
+    ax.fill_between([0, x1], y0, 0, color="tab:green", alpha=0.07, lw=0)
+    ax.set_xlabel(r"$S(\Omega^{in}, Q^{in})$ (or its average) [-]")
+    ax.set_ylabel(r"$S(\Omega^{out}, Q^{out})$ [-]")
+    ax.legend(fontsize=8, title="green: holds, red: fails", title_fontsize=8)
     return ax

@@ -33,6 +33,9 @@ def test_record_entries_have_the_required_fields():
             assert set(per_band) == {"LF", "MF", "HF", "EF"}
     assert by_id["K_f3"]["verdict"] == "differs" and by_id["K_e"]["verdict"] == "close"
     assert by_id["bound_f3"]["verdict"] == "not reproducible"
+    assert by_id["prop1_checks"]["recomputed"]["passed"] + by_id["prop1_checks"]["recomputed"][
+        "failed"] >= 100
+    assert len(by_id["table1_checks"]["recomputed"]) == 7
     hb = by_id["hf_best"]["recomputed"]
     assert hb["in_band"] <= hb["gamma_lmi"] * (1 + 1e-5)
     assert rec["environment"]["packages"]["numpy"] == np.__version__
