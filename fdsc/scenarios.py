@@ -1,0 +1,223 @@
+"""Artefacts of Sec. IV and the first half of Sec. VI: Theorem 1 on the aircraft, the switching law
+in action, and the stationary-disturbance runs of Figs. 3, 4 and 5.
+
+Plain-data functions called by the book and the reproduction record.
+"""
+
+import numpy as np
+
+from .plant import aircraft, paper_gains
+from .selectiveness import paper_modes
+from .signals import Sinusoids, hf_disturbance, lf_disturbance, piecewise_disturbance
+from .simulate import simulate, time_grid
+from .switching import DEFAULT_GAMMA_TOL, certify_q, design_q
+
+__all__ = [
+    "CONTROLLERS",
+    "STATIONARY_HORIZON",
+    "STATIONARY_DT",
+    "theorem1_table",
+    "our_q",
+    "run_controller",
+    "stationary_runs",
+    "step_halving",
+    "switching_statistics",
+    "autonomous_stability",
+    "lyapunov_jumps",
+    "window_ratios",
+]
+
+#: Controllers compared in Figs. 3-7 (the paper's names).
+CONTROLLERS = ("PassC-EF", "PassC-LF", "PassC-HF", "FDSC")
+#: Our choice for the horizon of Figs. 3-5 (not printed): 500 s, the horizon of Fig. 6.
+STATIONARY_HORIZON = 500.0
+#: Our time step: 1 ms (0.3 rad per step at the fastest tone; the step is exact, the law is
+#: sampled and the energy integral is Simpson's rule with a relative error of order (ω dt)⁴/180).
+STATIONARY_DT = 1e-3
+
+
+def our_q(gamma_tol=DEFAULT_GAMMA_TOL):
+    """Q_1, Q_2 from the Remark 3 design on the paper's modes (in-band mode: HF, index 1)."""
+    pm = paper_modes()
+    return design_q(pm["modes"], pm["bands"], 1, gamma_tol=gamma_tol)
+
+
+def theorem1_table(gamma_tols=(1.0, 10.0, 100.0, 1000.0)):
+    """γ's certified by Theorem 1 with the paper's Q's and with the Remark 3 design over γ_tol.
+
+    Returns
+    -------
+    list of dict
+        ``source, gamma_tol, gamma_1, gamma_2, Q_1, Q_2, max_eig`` (largest LMI eigenvalue,
+        < 0).
+    """
+    pm = paper_modes()
+    rows = []
+    paper = certify_q(pm["modes"], pm["bands"], pm["Q"])
+    rows.append({"source": "paper's Q's (certified)", "gamma_tol": np.nan,
+                 "gamma_1": paper.gammas[0], "gamma_2": paper.gammas[1], "Q_1": paper.Q[0],
+                 "Q_2": paper.Q[1], "max_eig": max(paper.max_eigs.values())})
+    for gt in gamma_tols:
+        r = design_q(pm["modes"], pm["bands"], 1, gamma_tol=gt)
+        rows.append({"source": "Remark 3 design", "gamma_tol": gt, "gamma_1": r.gammas[0],
+                     "gamma_2": r.gammas[1], "Q_1": r.Q[0], "Q_2": r.Q[1],
+                     "max_eig": max(r.max_eigs.values())})
+    return rows
+
+
+def run_controller(name, d, t, *, Q=None, law="previous", x0=None):
+    """Simulate one of :data:`CONTROLLERS` (FDSC with the given Q's, default the paper's)."""
+    plant, gains = aircraft(), paper_gains()
+    if name == "FDSC":
+        pm = paper_modes()
+        return simulate(pm["modes"], d, t, law_bands=pm["bands"], law_Q=pm["Q"] if Q is None else Q,
+                        law=law, x0=x0)
+    key = {"PassC-EF": "K_e", "PassC-LF": "K_f1", "PassC-HF": "K_f3"}[name]
+    return simulate(plant.closed_loop(gains[key]), d, t, x0=x0)
+
+
+def _l2_norm_curve(sim, every):
+    """Running L2-induced norm sqrt(∫₀ᵗ zᵀz / ∫₀ᵗ d²) (trapezoid; the dt factors cancel)."""
+    zz = np.concatenate([[0.0], np.cumsum(0.5 * (np.sum(sim.z[1:] ** 2, 1) + np.sum(sim.z[:-1] ** 2, 1)))])
+    dd = np.concatenate([[0.0], np.cumsum(0.5 * (sim.d[1:] ** 2 + sim.d[:-1] ** 2))])
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ratio = np.sqrt(np.where(dd > 0, zz / dd, np.nan))
+    return ratio[::every]
+
+
+def stationary_runs(kind, *, horizon=STATIONARY_HORIZON, dt=STATIONARY_DT, every=50,
+                    with_our_q=True):
+    """Figs. 3 (kind="LF") and 4/5 (kind="HF"): the four controllers under a stationary
+    disturbance, from rest.
+
+    Returns
+    -------
+    dict
+        ``t`` (decimated), ``z`` {controller: (k, 3)}, ``energy`` {controller: ∫zᵀz dt},
+        ``l2`` {controller: (k,) running L2-induced norm}, ``switches`` and ``share`` of FDSC,
+        ``horizon``, ``dt``; "FDSC (our Q)" is added with ``with_our_q``.
+    """
+    d = {"LF": lf_disturbance(), "HF": hf_disturbance()}[kind]
+    t = time_grid(horizon, dt)
+    names = list(CONTROLLERS) + (["FDSC (our Q)"] if with_our_q else [])
+    Qours = our_q().Q if with_our_q else None
+    out = {"t": t[::every], "z": {}, "energy": {}, "l2": {}, "switches": {}, "share": {},
+           "horizon": horizon, "dt": dt, "kind": kind, "input_energy": None}
+    for name in names:
+        sim = run_controller("FDSC", d, t, Q=Qours) if name == "FDSC (our Q)" else run_controller(name, d, t)
+        out["z"][name] = sim.z[::every]
+        out["energy"][name] = sim.energy()
+        out["l2"][name] = _l2_norm_curve(sim, every)
+        out["input_energy"] = sim.input_energy()
+        if name.startswith("FDSC"):
+            out["switches"][name] = int(sim.switch_times.size)
+            out["share"][name] = sim.time_share().tolist()
+    return out
+
+
+def step_halving(kind, *, horizon=100.0, dt=STATIONARY_DT):
+    """Energies with dt and dt/2 for every controller (the FDSC law is sampled on the grid)."""
+    d = {"LF": lf_disturbance(), "HF": hf_disturbance()}[kind]
+    rows = []
+    for name in CONTROLLERS:
+        e1 = run_controller(name, d, time_grid(horizon, dt)).energy()
+        e2 = run_controller(name, d, time_grid(horizon, dt / 2)).energy()
+        rows.append({"controller": name, "energy_dt": e1, "energy_dt2": e2,
+                     "rel_change": abs(e2 - e1) / abs(e1)})
+    return rows
+
+
+def switching_statistics(*, T=100.0, rho_t=0.2, rho_p_star=0.1, dt=STATIONARY_DT, laws=None):
+    """σ(t) along the piecewise disturbance of Fig. 7 (shortened to T), for several law variants.
+
+    Returns
+    -------
+    dict
+        ``t``, ``d`` (decimated), ``breaks``, and per variant ``sigma`` (decimated), ``switches``,
+        ``share`` (fraction in the HF mode per disturbance segment), ``single_sample_dwell``
+        (fraction of dwell intervals lasting one sample: the signature of chattering).
+    """
+    d = piecewise_disturbance(T, rho_t, rho_p_star)
+    t = time_grid(d.breaks[-1], dt)
+    pm = paper_modes()
+    laws = laws or {"paper Q, measured ẋ": (pm["Q"], "previous"),
+                    "paper Q, candidate ẋ": (pm["Q"], "candidate"),
+                    "our Q, measured ẋ": (our_q().Q, "previous")}
+    every = 20
+    out = {"t": t[::every], "d": d(t)[::every], "breaks": d.breaks, "variants": {}}
+    for label, (Q, law) in laws.items():
+        sim = simulate(pm["modes"], d, t, law_bands=pm["bands"], law_Q=Q, law=law)
+        seg = d.segment_of(t)
+        share = [float(np.mean(sim.sigma[seg == k] == 1)) for k in range(len(d.parts))]
+        sw = np.flatnonzero(np.diff(sim.sigma)) + 1
+        dwell = np.diff(np.concatenate([[0], sw, [t.size - 1]]))
+        out["variants"][label] = {
+            "sigma": sim.sigma[::every], "switches": int(sw.size), "share_hf": share,
+            "single_sample_dwell": float(np.mean(dwell <= 1)) if dwell.size else 0.0,
+            "energy": sim.energy()}
+    return out
+
+
+def autonomous_stability(n_initial=40, *, horizon=60.0, dt=1e-3, seed=3, Q=None):
+    """Statement (1): the autonomous switched loop (d = 0) from random initial states.
+
+    Returns
+    -------
+    dict
+        ``final_ratio`` (‖x(T)‖/‖x(0)‖ per run), ``max_growth`` (max over t of ‖x(t)‖/‖x(0)‖),
+        ``switches`` per run.
+    """
+    rng = np.random.default_rng(seed)
+    pm = paper_modes()
+    Q = pm["Q"] if Q is None else Q
+    t = time_grid(horizon, dt)
+    zero = Sinusoids([0.0], [1.0])
+    ratios, growth, switches = [], [], []
+    for _ in range(int(n_initial)):
+        x0 = rng.standard_normal(2)
+        sim = simulate(pm["modes"], zero, t, x0=x0, law_bands=pm["bands"], law_Q=Q)
+        nrm = np.linalg.norm(sim.x, axis=1) / np.linalg.norm(x0)
+        ratios.append(float(nrm[-1]))
+        growth.append(float(nrm.max()))
+        switches.append(int(sim.switch_times.size))
+    return {"final_ratio": np.array(ratios), "max_growth": np.array(growth),
+            "switches": np.array(switches), "horizon": horizon}
+
+
+def lyapunov_jumps(result, *, kind="HF", horizon=20.0, dt=STATIONARY_DT, Q=None):
+    """Jumps of V = xᵀ P^s_σ x at the switching instants of an FDSC run.
+
+    Parameters
+    ----------
+    result : Theorem1Result
+        Supplies P^s_1, P^s_2 (and, unless ``Q`` is given, the law's Q's).
+
+    Returns
+    -------
+    dict
+        ``ratios`` V(t⁺)/V(t⁻) at every switch, ``max_ratio``, ``n_switches``.
+    """
+    pm = paper_modes()
+    d = {"LF": lf_disturbance(), "HF": hf_disturbance()}[kind]
+    t = time_grid(horizon, dt)
+    sim = simulate(pm["modes"], d, t, law_bands=pm["bands"], law_Q=result.Q if Q is None else Q)
+    k = np.flatnonzero(np.diff(sim.sigma)) + 1
+    x = sim.x[k]
+    before = np.einsum("ki,kij,kj->k", x, np.array(result.Ps)[sim.sigma[k - 1]], x)
+    after = np.einsum("ki,kij,kj->k", x, np.array(result.Ps)[sim.sigma[k]], x)
+    ratios = after / before
+    return {"ratios": ratios, "max_ratio": float(ratios.max()) if ratios.size else 1.0,
+            "n_switches": int(k.size)}
+
+
+def window_ratios(run_sim, window):
+    """Energy ratio ∫zᵀz/∫d² over consecutive windows of a run (statement (2))."""
+    t = run_sim.t
+    n = round(window / (t[1] - t[0]))
+    zz = np.sum(run_sim.z**2, axis=1)
+    out = []
+    for k0 in range(0, t.size - n, n):
+        sl = slice(k0, k0 + n + 1)
+        out.append(float(np.trapezoid(zz[sl], t[sl]) / np.trapezoid(run_sim.d[sl] ** 2, t[sl])))
+    return np.array(out)
+

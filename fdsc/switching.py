@@ -1,0 +1,225 @@
+"""Theorem 1: the LMIs (T1-1), (T1-2) for I modes, the Q design of Remark 3, certification of
+given Q's.
+
+For closed-loop modes ``(A_i, B, C_i, D)`` with ranges Ω_i (matrices Ψ_i, real for LF/HF) and
+every ordered pair i ≠ j:
+
+    (T1-1)  [A_i; I]ᵀ (Φ⊗P_i^s + Ψ_i⊗Q_i − Ψ_j⊗Q_j) [A_i; I] < 0,              P_i^s > 0,
+    (T1-2)  [A_i B; I 0]ᵀ (Φ⊗P_i + Ψ_i⊗Q_i − Ψ_j⊗Q_j) [A_i B; I 0]
+            + [C_i D; 0 I]ᵀ diag(I, −γ_i² I) [C_i D; 0 I] < 0,                  Q_i > 0.
+
+(Q enters only through differences, so its overall scale is free up to the margins.)
+"""
+
+import time
+from dataclasses import dataclass
+
+import cvxpy as cp
+import numpy as np
+
+from ._validation import as_positive
+from .bands import PHI, Band
+from .energy import check_weight
+from .exceptions import VerificationError
+from .lmi import DEFAULT_MARGIN, _sym, solve_checked
+from .plant import LTISystem
+
+__all__ = ["Theorem1Result", "theorem1_matrices", "certify_q", "design_q", "DEFAULT_GAMMA_TOL"]
+
+#: γ_tol of Remark 3 used by default (not printed in the paper; the book shows the sensitivity).
+DEFAULT_GAMMA_TOL = 10.0
+
+
+@dataclass(frozen=True)
+class Theorem1Result:
+    """Certificate of Theorem 1.
+
+    Attributes
+    ----------
+    gammas : (I,) ndarray
+        γ_i of (T1-2), one per mode.
+    Q : list of (n, n) ndarray
+    P : list of (n, n) ndarray
+    Ps : list of (n, n) ndarray
+    max_eigs : dict
+        Largest eigenvalue of each (T1-1) and (T1-2) matrix at the solution, keyed
+        ``("T1-1", i, j)`` / ``("T1-2", i, j)``; all < 0.
+    status : str
+    solve_time : float
+    """
+
+    gammas: np.ndarray
+    Q: list
+    P: list
+    Ps: list
+    max_eigs: dict
+    status: str
+    solve_time: float
+
+
+def _validate(modes, bands):
+    modes = list(modes)
+    bands = list(bands)
+    if len(modes) < 2:
+        raise ValueError(f"modes must hold at least two closed loops, found {len(modes)}")
+    if len(bands) != len(modes):
+        raise ValueError(f"bands must list one range per mode: {len(modes)} modes, "
+                         f"{len(bands)} bands")
+    if not all(isinstance(m, LTISystem) for m in modes):
+        raise TypeError("modes must be fdsc.LTISystem closed loops")
+    if not all(isinstance(b, Band) for b in bands):
+        raise TypeError("bands must be fdsc.Band")
+    if any(b.is_complex for b in bands):
+        raise ValueError("bands: Theorem 1 is implemented for real Ψ (LF, HF, entire); the "
+                         "switching law sees only Re Ψ of an MF range")
+    return modes, bands
+
+
+def theorem1_matrices(mode_i, band_i, band_j, Ps_i, P_i, Q_i, Q_j, gamma_i, backend=np):
+    """The (T1-1) and (T1-2) matrices for one ordered pair (NumPy values or cvxpy expressions).
+
+    ``gamma_i`` enters as γ_i² through ``g = gamma_i**2`` for NumPy, or as the variable g for cvxpy.
+    """
+    A, B, C, D = mode_i.A, mode_i.B, mode_i.C, mode_i.D
+    n, m, p = A.shape[0], B.shape[1], C.shape[0]
+    kron = cp.kron if backend is cp else np.kron
+    Sig = kron(band_i.psi.real, Q_i) - kron(band_j.psi.real, Q_j)
+    F1 = np.vstack([A, np.eye(n)])
+    M1 = F1.T @ (kron(PHI, Ps_i) + Sig) @ F1
+    F2 = np.block([[A, B], [np.eye(n), np.zeros((n, m))]])
+    G2 = np.block([[C, D], [np.zeros((m, n)), np.eye(m)]])
+    g = gamma_i if backend is cp else gamma_i**2
+    out = np.block([[np.eye(p), np.zeros((p, m))], [np.zeros((m, p)), np.zeros((m, m))]])
+    inn = np.block([[np.zeros((p, p)), np.zeros((p, m))], [np.zeros((m, p)), np.eye(m)]])
+    M2 = F2.T @ (kron(PHI, P_i) + Sig) @ F2 + G2.T @ out @ G2 - g * (G2.T @ inn @ G2)
+    return M1, M2
+
+
+def _problem(modes, bands, margin, Q_fixed=None):
+    n = modes[0].n_states
+    I = len(modes)  # noqa: E741  (the paper's symbol)
+    Ps = [cp.Variable((n, n), symmetric=True, name=f"Ps_{i}") for i in range(I)]
+    P = [cp.Variable((n, n), symmetric=True, name=f"P_{i}") for i in range(I)]
+    g = [cp.Variable(name=f"gamma_sq_{i}", nonneg=True) for i in range(I)]
+    Q = ([cp.Variable((n, n), symmetric=True, name=f"Q_{i}") for i in range(I)]
+         if Q_fixed is None else [np.asarray(q) for q in Q_fixed])
+    cons = [Ps[i] >> margin * np.eye(n) for i in range(I)]
+    if Q_fixed is None:
+        cons += [q >> margin * np.eye(n) for q in Q]
+    for i in range(I):
+        for j in range(I):
+            if i == j:
+                continue
+            M1, M2 = theorem1_matrices(modes[i], bands[i], bands[j], Ps[i], P[i], Q[i], Q[j], g[i],
+                                       backend=cp)
+            cons += [_sym(M1) << -margin * np.eye(n), _sym(M2) << -margin * np.eye(M2.shape[0])]
+    return Ps, P, Q, g, cons
+
+
+def _verify(modes, bands, Ps, P, Q, gammas, status, what, scale=1.0):
+    """Evaluate every LMI at the solution; eigenvalues are reported divided by ``scale``."""
+    eigs = {}
+    for i in range(len(modes)):
+        for j in range(len(modes)):
+            if i == j:
+                continue
+            M1, M2 = theorem1_matrices(modes[i], bands[i], bands[j], Ps[i], P[i], Q[i], Q[j],
+                                       gammas[i])
+            eigs[("T1-1", i, j)] = float(np.linalg.eigvalsh(_sym(M1)).max()) / scale
+            eigs[("T1-2", i, j)] = float(np.linalg.eigvalsh(_sym(M2)).max()) / scale
+    bad = {k: v for k, v in eigs.items() if not v < 0}
+    if bad:
+        raise VerificationError(f"{what}: LMIs not negative definite at the solution: {bad}", status)
+    if min(float(np.linalg.eigvalsh(p).min()) for p in Ps) <= 0:
+        raise VerificationError(f"{what}: P^s is not positive definite", status)
+    return eigs
+
+
+def _result(modes, bands, Ps, P, Q, g, prob, what, t0, fixed_gamma=None):
+    status = solve_checked(prob, what)
+    elapsed = time.perf_counter() - t0
+    Psv = [v.value for v in Ps]
+    Pv = [v.value for v in P]
+    Qv = [q.value if isinstance(q, cp.Variable) else q for q in Q]
+    gam = np.sqrt([max(float(v.value), 0.0) for v in g])
+    eigs = _verify(modes, bands, Psv, Pv, Qv, gam, status, what)
+    return Theorem1Result(gam, Qv, Pv, Psv, eigs, status, elapsed)
+
+
+def certify_q(modes, bands, Q, *, margin=DEFAULT_MARGIN):
+    """The smallest γ_i that Theorem 1 certifies for *given* Q_i (each γ_i minimized).
+
+    Parameters
+    ----------
+    modes : list of LTISystem
+        Closed loops of the modes (I ≥ 2), sharing B and D.
+    bands : list of Band
+        Range Ω_i of each mode's law term (real Ψ).
+    Q : list of (n, n) array_like
+        The Q_i of the switching law (symmetric positive definite).
+    margin : float, optional
+
+    Returns
+    -------
+    Theorem1Result
+
+    Raises
+    ------
+    InfeasibleError
+        If (T1-1) or (T1-2) cannot hold for these Q's whatever the γ's.
+    """
+    modes, bands = _validate(modes, bands)
+    n = modes[0].n_states
+    if len(Q) != len(modes):
+        raise ValueError(f"Q must list one matrix per mode ({len(modes)}), found {len(Q)}")
+    Q = [check_weight(q, n) for q in Q]
+    margin = as_positive("margin", margin)
+    # the LMIs are homogeneous in (P^s, P, Q, γ², CᵀC): solve with Q/s and C/√s so that the
+    # solver sees O(1) data even for the paper's Q_1 ~ 1e6, then scale the certificate back
+    s = max(float(np.abs(q).max()) for q in Q)
+    smodes = [LTISystem(m.A, m.B, m.C / np.sqrt(s), m.D / np.sqrt(s)) for m in modes]
+    Ps, P, Qs, g, cons = _problem(smodes, bands, margin, Q_fixed=[q / s for q in Q])
+    prob = cp.Problem(cp.Minimize(cp.sum(cp.hstack(g))), cons)
+    t0 = time.perf_counter()
+    what = "Theorem 1 with given Q's"
+    status = solve_checked(prob, what)
+    elapsed = time.perf_counter() - t0
+    Psv = [s * v.value for v in Ps]
+    Pv = [s * v.value for v in P]
+    gam = np.sqrt(s * np.array([max(float(v.value), 0.0) for v in g]))
+    eigs = _verify(modes, bands, Psv, Pv, Q, gam, status, what, scale=s)
+    return Theorem1Result(gam, Q, Pv, Psv, eigs, status, elapsed)
+
+
+def design_q(modes, bands, in_band, *, gamma_tol=DEFAULT_GAMMA_TOL, margin=DEFAULT_MARGIN):
+    """Remark 3: fix γ_j = γ_tol for every j ≠ in_band and minimize γ_in_band over the Q's.
+
+    Parameters
+    ----------
+    modes, bands : see :func:`certify_q`
+    in_band : int
+        Index of the in-band mode i (0-based).
+    gamma_tol : float
+        γ_tol of Remark 3 (> 0).
+    margin : float, optional
+
+    Returns
+    -------
+    Theorem1Result
+
+    Raises
+    ------
+    InfeasibleError
+        If no Q's satisfy Theorem 1 with this γ_tol.
+    """
+    modes, bands = _validate(modes, bands)
+    if not 0 <= int(in_band) < len(modes):
+        raise ValueError(f"in_band must be a mode index in [0, {len(modes)}), found {in_band}")
+    gamma_tol = as_positive("gamma_tol", gamma_tol)
+    margin = as_positive("margin", margin)
+    Ps, P, Q, g, cons = _problem(modes, bands, margin)
+    cons += [g[j] == gamma_tol**2 for j in range(len(modes)) if j != in_band]
+    prob = cp.Problem(cp.Minimize(g[in_band]), cons)
+    t0 = time.perf_counter()
+    return _result(modes, bands, Ps, P, Q, g, prob, f"Remark 3 design (gamma_tol={gamma_tol:g})",
+                   t0)
