@@ -19,7 +19,15 @@ __all__ = [
     "plot_power_vs_alpha",
     "plot_epf_series",
     "plot_prop1_cases",
+    "plot_fdsc_diagram",
+    "plot_outputs",
+    "plot_l2_curves",
+    "plot_sigma_timeline",
 ]
+
+CONTROLLER_STYLES = {"PassC-EF": ("tab:blue", "-"), "PassC-LF": ("tab:red", "-"),
+                     "PassC-HF": ("gold", "-"), "FDSC": ("tab:purple", "-"),
+                     "FDSC (our Q)": ("tab:green", "--")}
 
 BAND_COLORS = {"LF": "tab:red", "MF": "tab:green", "HF": "tab:orange", "EF": "tab:blue"}
 
@@ -206,4 +214,92 @@ def plot_prop1_cases(rows, ax=None):
     ax.set_xlabel(r"$S(\Omega^{in}, Q^{in})$ (or its average) [-]")
     ax.set_ylabel(r"$S(\Omega^{out}, Q^{out})$ [-]")
     ax.legend(fontsize=8, title="green: holds, red: fails", title_fontsize=8)
+    return ax
+
+
+def plot_fdsc_diagram(ax=None):
+    """Fig. 1: the closed loop with FDSC, drawn as a block diagram (no data)."""
+    from matplotlib.patches import FancyArrowPatch, FancyBboxPatch
+
+    ax = _axes(ax, figsize=(9, 4.2))
+    ax.set_xlim(0, 10)
+    ax.set_ylim(0, 5)
+    ax.axis("off")
+
+    def box(x, y, w, h, text, color):
+        ax.add_patch(FancyBboxPatch((x, y), w, h, boxstyle="round,pad=0.05", fc=color, ec="k"))
+        ax.text(x + w / 2, y + h / 2, text, ha="center", va="center", fontsize=9)
+
+    def arrow(a, b, text=None, off=(0, 0.15)):
+        ax.add_patch(FancyArrowPatch(a, b, arrowstyle="-|>", mutation_scale=12, lw=1.2))
+        if text:
+            ax.text((a[0] + b[0]) / 2 + off[0], (a[1] + b[1]) / 2 + off[1], text, ha="center",
+                    fontsize=9)
+
+    box(3.6, 3.3, 2.8, 1.1, "plant\n$\\dot x = Ax + B_1 d + B_2 u$\n$z = Cx + D_1 d + D_2 u$", "#e8f0fb")
+    box(0.4, 1.0, 2.6, 1.2, "passive gains\n$K_1 = K_{f_1}$ (LF), $K_2 = K_{f_3}$ (HF)", "#fdf1e0")
+    box(3.7, 0.6, 2.6, 1.6, "switching law\n$\\sigma(t) = \\arg\\max_i$\n"
+        "$[\\dot x; x]^*(\\Psi_i \\otimes Q_i)[\\dot x; x]$", "#eaf6ea")
+    box(7.0, 1.0, 2.4, 1.2, "FD-EPF of each range\n$P_t(\\Omega_i, Q_i, t)$", "#f5eaf6")
+    arrow((1.2, 3.85), (3.6, 3.85), "$d(t)$")
+    arrow((6.4, 3.85), (9.2, 3.85), "$z(t)$")
+    arrow((6.4, 3.55), (8.2, 2.2), "$x, \\dot x$", off=(0.5, 0.0))
+    arrow((7.0, 1.6), (6.3, 1.4), "")
+    arrow((3.7, 1.4), (3.0, 1.6), "$\\sigma(t)$", off=(0, 0.2))
+    arrow((1.7, 2.2), (3.6, 3.5), "$u = K_{\\sigma(t)} x$", off=(-0.6, 0.1))
+    return ax
+
+
+def plot_outputs(data, component, ax=None, *, scale=None, names=None):
+    """One output of z over time for each controller (Figs. 3 and 4).
+
+    Parameters
+    ----------
+    data : dict
+        Output of :func:`fdsc.scenarios.stationary_runs`.
+    component : int
+        0: 4q, 1: 2δ_E, 2: 2δ_PTV (the rows of z).
+    scale : dict, optional
+        ``{controller: factor}`` applied before drawing (stated in the legend).
+    """
+    ax = _axes(ax)
+    labels = ["$4q$ (pitch rate)", r"$2\delta_E$ (tail deflection)", r"$2\delta_{PTV}$ (nozzle deflection)"]
+    for name, z in data["z"].items():
+        if names is not None and name not in names:
+            continue
+        color, ls = CONTROLLER_STYLES.get(name, ("k", "-"))
+        f = (scale or {}).get(name, 1.0)
+        lab = name if f == 1.0 else f"{name} × {f:g}"
+        ax.plot(data["t"], f * z[:, component], color=color, ls=ls, lw=0.8, label=lab)
+    ax.set_xlabel("$t$ [s]")
+    ax.set_ylabel(f"$z_{component + 1}$ = {labels[component]} [-]")
+    ax.legend(fontsize=7, ncol=3)
+    return ax
+
+
+def plot_l2_curves(data, ax=None):
+    """Fig. 5: the running L2-induced norm sqrt(∫zᵀz / ∫d²) over time for each controller."""
+    ax = _axes(ax)
+    for name, v in data["l2"].items():
+        color, ls = CONTROLLER_STYLES.get(name, ("k", "-"))
+        ax.plot(data["t"], v, color=color, ls=ls, label=name)
+    ax.set_xlabel("$t$ [s]")
+    ax.set_ylabel(r"$\sqrt{\int_0^t z^\top z / \int_0^t d^2}$ [-]")
+    ax.set_yscale("log")
+    ax.legend(fontsize=8)
+    return ax
+
+
+def plot_sigma_timeline(data, ax=None):
+    """σ(t) of each law variant against the piecewise disturbance (stacked rows, segments marked)."""
+    ax = _axes(ax, figsize=(10, 4))
+    variants = list(data["variants"].items())
+    for k, (label, v) in enumerate(variants):
+        ax.fill_between(data["t"], k, k + 0.8 * v["sigma"], step="post", alpha=0.8,
+                        label=f"{label}: {v['switches']} switches")
+    for b in data["breaks"][1:-1]:
+        ax.axvline(b, color="k", ls=":", lw=1)
+    ax.set_yticks([k + 0.4 for k in range(len(variants))], [lab for lab, _ in variants], fontsize=8)
+    ax.set_xlabel("$t$ [s]  (dotted: disturbance switches HF → LF → HF)")
+    ax.set_title("active mode: bar up = PassC-HF ($K_2$), down = PassC-LF ($K_1$)", fontsize=9)
     return ax

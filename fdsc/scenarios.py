@@ -116,14 +116,16 @@ def stationary_runs(kind, *, horizon=STATIONARY_HORIZON, dt=STATIONARY_DT, every
 
 
 def step_halving(kind, *, horizon=100.0, dt=STATIONARY_DT):
-    """Energies with dt and dt/2 for every controller (the FDSC law is sampled on the grid)."""
+    """Energies and switch counts with dt and dt/2 for every controller (the law is sampled)."""
     d = {"LF": lf_disturbance(), "HF": hf_disturbance()}[kind]
     rows = []
     for name in CONTROLLERS:
-        e1 = run_controller(name, d, time_grid(horizon, dt)).energy()
-        e2 = run_controller(name, d, time_grid(horizon, dt / 2)).energy()
+        s1 = run_controller(name, d, time_grid(horizon, dt))
+        s2 = run_controller(name, d, time_grid(horizon, dt / 2))
+        e1, e2 = s1.energy(), s2.energy()
         rows.append({"controller": name, "energy_dt": e1, "energy_dt2": e2,
-                     "rel_change": abs(e2 - e1) / abs(e1)})
+                     "rel_change": abs(e2 - e1) / abs(e1), "switches_dt": int(s1.switch_times.size),
+                     "switches_dt2": int(s2.switch_times.size)})
     return rows
 
 

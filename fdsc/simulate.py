@@ -101,16 +101,28 @@ def particular(A, B, d, t):
     ``x_p(t) = Σ Im(X_k e^{j(ω_k t + φ_k)})`` with ``X_k = (jω_k I − A)⁻¹ B a_k``. Requires
     ``jω_k`` not to be an eigenvalue of A (A need not be Hurwitz).
     """
-    n = A.shape[0]
-    t = np.asarray(t, dtype=float)
-    xp = np.zeros((t.size, n))
-    xdp = np.zeros((t.size, n))
-    for a, w, ph in zip(d.amplitudes, d.frequencies, d.phases, strict=True):
-        X = np.linalg.solve(1j * w * np.eye(n) - A, B.reshape(-1) * a)
-        e = np.exp(1j * (w * t + ph))
-        xp += np.outer(e, X).imag
-        xdp += np.outer(1j * w * e, X).imag
+    (xp,), (xdp,) = _particular_many([np.asarray(A, float)], B, d, t, derivative=True)
     return xp, xdp
+
+
+def _particular_many(As, B, d, t, derivative=False):
+    """x_p (and ẋ_p) of several modes at once; cos and sin of each tone are computed once."""
+    t = np.asarray(t, dtype=float)
+    n = As[0].shape[0]
+    xps = [np.zeros((t.size, n)) for _ in As]
+    xdps = [np.zeros((t.size, n)) for _ in As] if derivative else None
+    b = np.asarray(B, dtype=float).reshape(-1)
+    for a, w, ph in zip(d.amplitudes, d.frequencies, d.phases, strict=True):
+        theta = w * t + ph
+        c, s = np.cos(theta), np.sin(theta)
+        for m, A in enumerate(As):
+            X = np.linalg.solve(1j * w * np.eye(n) - A, b * a)
+            # Im(X e^{jθ}) = Im X cos θ + Re X sin θ
+            xps[m] += np.outer(c, X.imag) + np.outer(s, X.real)
+            if derivative:
+                Xd = 1j * w * X
+                xdps[m] += np.outer(c, Xd.imag) + np.outer(s, Xd.real)
+    return xps, xdps
 
 
 def _segments(d, t):
@@ -138,18 +150,19 @@ def _segments(d, t):
     return out
 
 
-def _particular_steps(A, B, d, t):
-    """x_p at the left and right end of every step [t_k, t_{k+1}) for the segment owning it."""
-    n = A.shape[0]
-    N = t.size
-    left = np.zeros((N - 1, n))
-    right = np.zeros((N - 1, n))
+def _particular_steps(As, B, d, t):
+    """x_p of every mode at the left and right end of every step [t_k, t_{k+1}), using the
+    sinusoids of the segment that owns the step. Returns two (I, N − 1, n) arrays."""
+    n, N = As[0].shape[0], t.size
+    left = np.zeros((len(As), N - 1, n))
+    right = np.zeros((len(As), N - 1, n))
     for k0, k1, part in _segments(d, t):
         if part is None or k1 <= k0:
             continue
-        xp, _ = particular(A, B, part, t[k0:k1 + 1])
-        left[k0:k1] = xp[:-1]
-        right[k0:k1] = xp[1:]
+        xps, _ = _particular_many(As, B, part, t[k0:k1 + 1])
+        for m, xp in enumerate(xps):
+            left[m, k0:k1] = xp[:-1]
+            right[m, k0:k1] = xp[1:]
     return left, right
 
 
@@ -173,13 +186,15 @@ def _kernel_numba(Phi, left, right, A, B, d, W, x0, sigma0, candidate):
             best = -np.inf
             choice = prev
             for i in range(n_modes):
-                m = i if candidate else prev
-                for r in range(n):
-                    acc = B[r] * d[k]
-                    for c in range(n):
-                        acc += A[m, r, c] * xk[c]
-                    v[r] = acc
-                    v[n + r] = xk[r]
+                if candidate or i == 0:
+                    # measured ẋ (decision 6) is the same for every candidate: build v once
+                    m = i if candidate else prev
+                    for r in range(n):
+                        acc = B[r] * d[k]
+                        for c in range(n):
+                            acc += A[m, r, c] * xk[c]
+                        v[r] = acc
+                        v[n + r] = xk[r]
                 score = 0.0
                 for r in range(2 * n):
                     row = 0.0
@@ -293,10 +308,8 @@ def simulate(modes, d, t, *, x0=None, law_bands=None, law_Q=None, law="previous"
         raise ValueError(f"x0 must have {n} entries, found {x0.size}")
     dvals = d(t)
     Phi = np.array([expm(m.A * dt) for m in modes])
-    lr = [_particular_steps(m.A, B, d, t) for m in modes]
-    left = np.ascontiguousarray(np.array([a for a, _ in lr]))
-    right = np.ascontiguousarray(np.array([b for _, b in lr]))
     A = np.array([m.A for m in modes])
+    left, right = _particular_steps(list(A), B, d, t)
     run = _kernel_numba if kernel == "numba" else _kernel_numpy
     x, sigma = run(Phi, left, right, A, np.ascontiguousarray(B[:, 0]), dvals, W, x0,
                    int(sigma0), law == "candidate")

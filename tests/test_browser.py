@@ -20,7 +20,7 @@ SHOTS = ROOT / "book" / "_build" / "screenshots"
 CHROMIUM = os.environ.get("FDSC_CHROMIUM", "/usr/bin/chromium")
 #: Pages that carry mathematics and must show typeset MathJax output.
 MATH_PAGES = ("intro.html", "frequency_ranges.html", "gkyp_lemma.html", "passive_controllers.html",
-              "frequency_selective.html")
+              "frequency_selective.html", "theorem1.html", "switching_law.html", "stationary.html")
 #: Pages screenshotted for the CI artifacts.
 SHOT_PAGES = ("frequency_ranges.html", "gkyp_lemma.html")
 CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",

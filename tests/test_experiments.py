@@ -36,6 +36,12 @@ def test_record_entries_have_the_required_fields():
     assert by_id["prop1_checks"]["recomputed"]["passed"] + by_id["prop1_checks"]["recomputed"][
         "failed"] >= 100
     assert len(by_id["table1_checks"]["recomputed"]) == 7
+    assert {"Q_1", "Q_2", "thm1_gammas"} <= ids
+    for fig in ("fig3", "fig4"):
+        f = rec["figures"][fig]
+        assert set(f["energy"]) == {"PassC-EF", "PassC-LF", "PassC-HF", "FDSC"}
+        assert f["horizon"] > 0 and f["dt"] > 0
+    assert "FDSC" in rec["figures"]["fig5"]["l2_induced_norm_final"]
     hb = by_id["hf_best"]["recomputed"]
     assert hb["in_band"] <= hb["gamma_lmi"] * (1 + 1e-5)
     assert rec["environment"]["packages"]["numpy"] == np.__version__
