@@ -99,7 +99,8 @@ def _passive_entries():
         entries.append({
             "id": row["name"], "source": f"Sec. VI, {row['name']}",
             "paper": row["paper_K"], "recomputed": row["ours_K"], "verdict": row["verdict"],
-            "note": (f"{how} (DESIGN.md; epsilon = {results[row['name']].epsilon:g}"
+            "note": (f"{how} (derived in the passive-controller chapter; "
+                     f"epsilon = {results[row['name']].epsilon:g}"
                      + (", sigma = 0" if band == "HF" else "") + f"); relative difference "
                      f"{row['rel_diff']:.2e}; in-band gain of the printed gain "
                      f"{row['gamma_paper_gain']:.4f}, of ours {row['gamma_sweep']:.4f} "

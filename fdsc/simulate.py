@@ -7,7 +7,7 @@ active on ``[t_k, t_{k+1})``,
     x_{k+1} = x_p(t_{k+1}) + e^{A_i Δt} (x_k − x_p(t_k)).
 
 No quadrature of the input is involved; the only approximation of a switched run is that the
-switching law is evaluated on the sample grid (DESIGN.md, decision 5). The hot loop runs in a
+switching law is evaluated on the sample grid. The hot loop runs in a
 compiled numba kernel; :func:`_kernel_numpy` is the same method in plain Python/NumPy, kept for
 the tests and the benchmark.
 """
@@ -26,7 +26,7 @@ from .signals import Piecewise, Sinusoids
 
 __all__ = ["SimResult", "particular", "simulate", "time_grid", "LAWS"]
 
-#: How ẋ enters the switching law: "previous" (decision 6: ẋ = A_σ(t⁻) x + B d, the measured
+#: How ẋ enters the switching law: "previous" (default: ẋ = A_σ(t⁻) x + B d, the measured
 #: derivative) or "candidate" (each candidate i is scored with its own ẋ = A_i x + B d).
 LAWS = ("previous", "candidate")
 

@@ -1,7 +1,7 @@
 """State-feedback synthesis of the passive controllers (band-limited and H∞).
 
 The paper prints four gains but not how they were computed. The LMIs below are derived
-for this companion (``DESIGN.md``; the book's passive-controller chapter shows the steps):
+for this companion (the book's passive-controller chapter shows the steps):
 
 1. ``G`` and ``Gᵀ`` have the same singular values, so Lemma 1 is applied to the dual
    realization ``(A_Kᵀ, C_Kᵀ, B1ᵀ, D1ᵀ)``;

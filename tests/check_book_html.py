@@ -15,7 +15,7 @@ from urllib.parse import unquote, urlparse
 #: Chapters and the least number of figures each must show.
 MIN_IMAGES = {"frequency_ranges.html": 3, "gkyp_lemma.html": 1, "passive_controllers.html": 3,
               "frequency_selective.html": 3, "theorem1.html": 1, "switching_law.html": 2,
-              "stationary.html": 5}
+              "stationary.html": 4}
 
 
 class _Collector(HTMLParser):
