@@ -199,7 +199,7 @@ def table1_trends(alphas=(0.2, 0.5, 0.8, 0.95, 0.99), *, horizon=100.0, dt=1e-3)
 
     Mode i is the HF controller K_f3 with (Ω_3, Q_2), mode j the LF controller K_f1 with
     (Ω_1, Q_1); the disturbance is :func:`alpha_mix`. Steady-state rows are exact; the time
-    shares come from switched simulations (law of decision 6) over ``horizon``.
+    shares come from switched simulations (default law: measured ẋ) over ``horizon``.
 
     Returns
     -------

@@ -187,7 +187,7 @@ def _kernel_numba(Phi, left, right, A, B, d, W, x0, sigma0, candidate):
             choice = prev
             for i in range(n_modes):
                 if candidate or i == 0:
-                    # measured ẋ (decision 6) is the same for every candidate: build v once
+                    # the measured ẋ (default law) is the same for every candidate: build v once
                     m = i if candidate else prev
                     for r in range(n):
                         acc = B[r] * d[k]

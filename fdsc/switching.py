@@ -135,7 +135,7 @@ def _verify(modes, bands, Ps, P, Q, gammas, status, what, scale=1.0):
     return eigs
 
 
-def _result(modes, bands, Ps, P, Q, g, prob, what, t0, fixed_gamma=None):
+def _result(modes, bands, Ps, P, Q, g, prob, what, t0):
     status = solve_checked(prob, what)
     elapsed = time.perf_counter() - t0
     Psv = [v.value for v in Ps]
