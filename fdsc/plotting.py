@@ -197,7 +197,8 @@ def plot_epf_series(data, ax=None):
 def plot_prop1_cases(rows, ax=None):
     """S(Ω^in) against S(Ω^out) for every case (symlog axes); the proposition's quadrant shaded."""
     ax = _axes(ax)
-    markers = {"infinite, real Ψ": "o", "infinite, MF": "s", "window from rest": "^"}
+    markers = {"infinite, real Ψ": "o", "infinite, MF": "s", "window from rest": "^",
+               "infinite, Q weighting one state": "D"}
     for kind, m in markers.items():
         sel = [r for r in rows if r["kind"] == kind]
         if sel:

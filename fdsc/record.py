@@ -138,7 +138,7 @@ def _passive_entries():
 
 def _selectiveness_entries():
     """Entries prop1_checks and table1_checks (Sec. III)."""
-    rows = prop1_cases(120)
+    rows = prop1_cases(144)
     summ = prop1_summary(rows)
     tt = table1_trends()
     t1 = {r["quantity"]: {"claimed": r["claimed"], "observed": r["observed"],

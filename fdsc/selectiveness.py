@@ -73,6 +73,7 @@ def prop1_cases(n_cases=120, *, seed=2026):
 
     * ``"infinite, real Ψ"``: Ω_i ∈ {LF, HF}, steady-state average FD-EPF (exact);
     * ``"infinite, MF"``: Ω_i = MF (complex Ψ), steady state;
+    * ``"infinite, Q weighting one state"``: as the first kind with Q's of condition number 1e8;
     * ``"window from rest"``: Ω_i ∈ {LF, HF}, x(0) = 0, the FD-EEF over a window
       ``[0, T_l]`` that contains the transient, T_l from 0.02 to 20 periods of the slowest tone.
 
@@ -84,12 +85,17 @@ def prop1_cases(n_cases=120, *, seed=2026):
     """
     rng = np.random.default_rng(seed)
     rows = []
-    kinds = ["infinite, real Ψ"] * 2 + ["infinite, MF"] + ["window from rest"] * 2
+    kinds = (["infinite, real Ψ"] * 2 + ["infinite, MF"] + ["window from rest"] * 2
+             + ["infinite, Q weighting one state"])
     for c in range(int(n_cases)):
         kind = kinds[c % len(kinds)]
         n = int(rng.integers(2, 4))
         A, B = _random_stable(rng, n), rng.standard_normal((n, 1))
-        Qin, Qout = random_spd(rng, n), random_spd(rng, n)
+        if kind == "infinite, Q weighting one state":
+            # nearly rank one: condition number 1e8, so Q effectively sees one direction
+            Qin, Qout = random_spd(rng, n, condition=1e8), random_spd(rng, n, condition=1e8)
+        else:
+            Qin, Qout = random_spd(rng, n), random_spd(rng, n)
         if kind == "infinite, MF":
             band_in, band_out = "MF", str(rng.choice(["LF", "HF"]))
         else:
