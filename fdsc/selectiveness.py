@@ -7,8 +7,8 @@ Plain-data functions called by the book and the reproduction record.
 import numpy as np
 
 from .bands import Band
-from .energy import instantaneous_power, steady_state_power
-from .plant import aircraft, paper_bands, paper_data, paper_gains
+from .energy import fdeef, instantaneous_power, steady_state_power
+from .plant import LTISystem, aircraft, paper_bands, paper_data, paper_gains
 from .signals import Sinusoids, hf_disturbance, lf_disturbance
 from .simulate import simulate, time_grid
 
@@ -111,12 +111,8 @@ def prop1_cases(n_cases=120, *, seed=2026):
             horizon = periods * 2 * np.pi / d.frequencies.min()
             dt = min(0.02 / d.frequencies.max(), horizon / 2000)
             horizon = dt * max(200, round(horizon / dt))
-            from .plant import LTISystem
-
             sys = LTISystem(A, B, np.eye(n), np.zeros((n, 1)))
             sim = simulate(sys, d, time_grid(horizon, dt))
-            from .energy import fdeef
-
             s_in = fdeef(sim.t, sim.x, sim.xdot, _BANDS[band_in], Qin)
             s_out = fdeef(sim.t, sim.x, sim.xdot, _BANDS[band_out], Qout)
             row["periods"] = periods

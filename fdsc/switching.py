@@ -135,14 +135,16 @@ def _verify(modes, bands, Ps, P, Q, gammas, status, what, scale=1.0):
     return eigs
 
 
-def _result(modes, bands, Ps, P, Q, g, prob, what, t0):
+def _result(modes, bands, Ps, P, Q, g, prob, what, scale=1.0):
+    """Solve, undo the data scaling (P, P^s and γ² scale with ``scale``) and verify unscaled."""
+    t0 = time.perf_counter()
     status = solve_checked(prob, what)
     elapsed = time.perf_counter() - t0
-    Psv = [v.value for v in Ps]
-    Pv = [v.value for v in P]
-    Qv = [q.value if isinstance(q, cp.Variable) else q for q in Q]
-    gam = np.sqrt([max(float(v.value), 0.0) for v in g])
-    eigs = _verify(modes, bands, Psv, Pv, Qv, gam, status, what)
+    Psv = [scale * v.value for v in Ps]
+    Pv = [scale * v.value for v in P]
+    Qv = [scale * q.value if isinstance(q, cp.Variable) else scale * q for q in Q]
+    gam = np.sqrt(scale * np.array([max(float(v.value), 0.0) for v in g]))
+    eigs = _verify(modes, bands, Psv, Pv, Qv, gam, status, what, scale=scale)
     return Theorem1Result(gam, Qv, Pv, Psv, eigs, status, elapsed)
 
 
@@ -180,15 +182,7 @@ def certify_q(modes, bands, Q, *, margin=DEFAULT_MARGIN):
     smodes = [LTISystem(m.A, m.B, m.C / np.sqrt(s), m.D / np.sqrt(s)) for m in modes]
     Ps, P, Qs, g, cons = _problem(smodes, bands, margin, Q_fixed=[q / s for q in Q])
     prob = cp.Problem(cp.Minimize(cp.sum(cp.hstack(g))), cons)
-    t0 = time.perf_counter()
-    what = "Theorem 1 with given Q's"
-    status = solve_checked(prob, what)
-    elapsed = time.perf_counter() - t0
-    Psv = [s * v.value for v in Ps]
-    Pv = [s * v.value for v in P]
-    gam = np.sqrt(s * np.array([max(float(v.value), 0.0) for v in g]))
-    eigs = _verify(modes, bands, Psv, Pv, Q, gam, status, what, scale=s)
-    return Theorem1Result(gam, Q, Pv, Psv, eigs, status, elapsed)
+    return _result(modes, bands, Ps, P, Qs, g, prob, "Theorem 1 with given Q's", scale=s)
 
 
 def design_q(modes, bands, in_band, *, gamma_tol=DEFAULT_GAMMA_TOL, margin=DEFAULT_MARGIN):
@@ -220,6 +214,4 @@ def design_q(modes, bands, in_band, *, gamma_tol=DEFAULT_GAMMA_TOL, margin=DEFAU
     Ps, P, Q, g, cons = _problem(modes, bands, margin)
     cons += [g[j] == gamma_tol**2 for j in range(len(modes)) if j != in_band]
     prob = cp.Problem(cp.Minimize(g[in_band]), cons)
-    t0 = time.perf_counter()
-    return _result(modes, bands, Ps, P, Q, g, prob, f"Remark 3 design (gamma_tol={gamma_tol:g})",
-                   t0)
+    return _result(modes, bands, Ps, P, Q, g, prob, f"Remark 3 design (gamma_tol={gamma_tol:g})")

@@ -310,7 +310,8 @@ def optimize_gain(plant, band, K0, *, n_starts=4, spread=0.5, n_grid=400, maxite
         If no start converged within ``maxiter`` iterations.
     """
     _check(plant, band)
-    K0 = np.array(plant.closed_loop(K0) and K0, dtype=float)  # closed_loop validates the shape
+    plant.closed_loop(K0)  # validates the shape of K0
+    K0 = np.array(K0, dtype=float)
     rng = np.random.default_rng(0) if rng is None else rng
     w = _objective_grid(band, int(n_grid))
     k_max = 100.0 * max(1.0, float(np.linalg.norm(K0))) if k_max is None else as_positive(
