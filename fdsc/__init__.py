@@ -8,7 +8,11 @@ from .exceptions import (
     FdscError,
     InfeasibleError,
     IterationLimitError,
+    MemoryLimitError,
+    SingularFrequencyError,
     SolverError,
+    UnstableError,
+    UnstableRunWarning,
     VerificationError,
 )
 from .frequency import BandPeak, band_peak, freqresp, sigma_max
@@ -19,7 +23,8 @@ __version__ = "0.1.0"
 __all__ = [
     "PHI", "Band", "band_from_spec",
     "FdscError", "BandError", "DimensionError", "SolverError", "InfeasibleError",
-    "VerificationError", "IterationLimitError",
+    "VerificationError", "IterationLimitError", "UnstableError", "SingularFrequencyError",
+    "MemoryLimitError", "UnstableRunWarning",
     "BandPeak", "band_peak", "freqresp", "sigma_max",
     "LTISystem", "Plant", "aircraft", "paper_bands", "paper_data", "paper_gains",
 ]

@@ -25,7 +25,11 @@ import numpy as np
 from ._validation import as_positive
 from .exceptions import BandError
 
-__all__ = ["Band", "PHI", "band_from_spec"]
+__all__ = ["Band", "PHI", "band_from_spec", "LIMIT_RANGE"]
+
+#: Finite band limits must lie in this range (rad/s): Ψ holds ϖ² and ϖ_1ϖ_2, which then
+#: neither underflow to 0 nor overflow to inf (and stay far from the float range's ends).
+LIMIT_RANGE = (1e-100, 1e100)
 
 #: Φ of the gKYP lemma for continuous time (the imaginary axis).
 PHI = np.array([[0.0, 1.0], [1.0, 0.0]])
@@ -63,11 +67,16 @@ class Band:
     upper: float
 
     def __post_init__(self):
-        if self.kind not in _KINDS:
+        if not isinstance(self.kind, str) or self.kind not in _KINDS:
             raise BandError(f"kind must be one of {_KINDS}, but found {self.kind!r}")
-        lo, hi = float(self.lower), float(self.upper)
+        lo, hi = _number("lower", self.lower), _number("upper", self.upper)
         if math.isnan(lo) or math.isnan(hi):
             raise BandError(f"band limits must not be NaN, found lower={lo}, upper={hi}")
+        for name, v in (("lower", lo), ("upper", hi)):
+            if v > 0 and math.isfinite(v) and not LIMIT_RANGE[0] <= v <= LIMIT_RANGE[1]:
+                raise BandError(f"{name} limit must lie in [{LIMIT_RANGE[0]:g}, {LIMIT_RANGE[1]:g}] "
+                                f"rad/s so that the entries of Psi neither underflow nor overflow, "
+                                f"but found {v:g}")
         if lo < 0:
             raise BandError(f"lower limit must be >= 0 rad/s, but found {lo}")
         if not lo < hi:
@@ -145,8 +154,13 @@ class Band:
         """Frequency weight ``[jω; 1]* Ψ [jω; 1]`` (real), vectorized over ``omega``.
 
         Positive inside the band (for MF: for positive ω inside), negative outside.
+
+        Parameters
+        ----------
+        omega : float or array_like
+            Frequencies in rad/s (finite, real).
         """
-        w = np.asarray(omega, dtype=float)
+        w = _omega(omega)
         p = self.psi
         # conj(jω) Ψ12 + Ψ21 jω = 2 ω Im Ψ12 because Ψ is Hermitian
         return p[0, 0].real * w**2 + p[1, 1].real + 2.0 * w * p[0, 1].imag
@@ -156,21 +170,52 @@ class Band:
 
         Equals ``(w(ω) + w(−ω)) / 2``; it coincides with :meth:`weight` except for MF,
         where it is ``−(ω² + ϖ_1 ϖ_2) < 0`` everywhere.
+
+        Parameters
+        ----------
+        omega : float or array_like
+            Frequencies in rad/s (finite, real).
         """
-        w = np.asarray(omega, dtype=float)
+        w = _omega(omega)
         return 0.5 * (self.weight(w) + self.weight(-w))
 
     def contains(self, omega):
-        """True where ``|omega|`` lies in the band (limits included)."""
-        a = np.abs(np.asarray(omega, dtype=float))
+        """True where ``|omega|`` lies in the band (limits included).
+
+        Parameters
+        ----------
+        omega : float or array_like
+            Frequencies in rad/s (finite, real).
+        """
+        a = np.abs(_omega(omega))
         return (a >= self.lower) & (a <= self.upper)
+
+
+def _omega(omega):
+    from ._validation import as_vector
+
+    arr = np.asarray(omega)
+    out = as_vector("omega", arr.reshape(-1) if arr.ndim else arr)
+    return out.reshape(arr.shape) if arr.ndim else out[0]
+
+
+def _number(name, value):
+    import numbers
+
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise BandError(f"{name} must be a real number in rad/s, but found {value!r}")
+    return float(value)
 
 
 def _limit(name, value):
     try:
-        return as_positive(name, value)
+        x = as_positive(name, value)
     except ValueError as exc:
         raise BandError(str(exc)) from None
+    if not LIMIT_RANGE[0] <= x <= LIMIT_RANGE[1]:
+        raise BandError(f"{name} must lie in [{LIMIT_RANGE[0]:g}, {LIMIT_RANGE[1]:g}] rad/s so that "
+                        f"the entries of Psi neither underflow nor overflow, but found {x:g}")
+    return x
 
 
 def band_from_spec(spec):
@@ -187,6 +232,9 @@ def band_from_spec(spec):
     >>> band_from_spec({"kind": "MF", "w_1": 1, "w_2": 10}).label
     'MF [1, 10] rad/s'
     """
+    if not isinstance(spec, dict):
+        raise BandError(f"spec must be a dict such as {{'kind': 'LF', 'w_l': 1.0}}, but found "
+                        f"{type(spec).__name__}")
     kind = spec.get("kind")
     try:
         if kind == "LF":

@@ -12,6 +12,10 @@ __all__ = [
     "InfeasibleError",
     "VerificationError",
     "IterationLimitError",
+    "UnstableError",
+    "SingularFrequencyError",
+    "MemoryLimitError",
+    "UnstableRunWarning",
 ]
 
 
@@ -28,19 +32,23 @@ class BandError(FdscError, ValueError):
 
 
 class SolverError(FdscError, RuntimeError):
-    """An LMI solve failed; ``status`` holds the solver's status string.
+    """An LMI solve failed; ``status`` holds the cvxpy status, ``solver_status`` Clarabel's own.
 
     Parameters
     ----------
     message : str
         What was being solved and why it failed.
     status : str
-        The cvxpy status (e.g. ``"infeasible"``, ``"solver_error"``).
+        The cvxpy status (e.g. ``"infeasible"``, ``"solver_error"``), or a description of the
+        check that decided without a solve.
+    solver_status : str, optional
+        Clarabel's status (e.g. ``"InsufficientProgress"``, ``"AlmostSolved"``), when a solve ran.
     """
 
-    def __init__(self, message, status):
-        super().__init__(f"{message} (solver status: {status})")
+    def __init__(self, message, status, solver_status=None):
+        super().__init__(f"{message} (status: {status})")
         self.status = status
+        self.solver_status = solver_status
 
 
 class InfeasibleError(SolverError):
@@ -53,3 +61,28 @@ class VerificationError(SolverError):
 
 class IterationLimitError(FdscError, RuntimeError):
     """An iterative procedure reached its iteration cap without converging."""
+
+
+class UnstableError(FdscError, ValueError):
+    """A system that must be stable (A Hurwitz) is not, or a simulated state diverged.
+
+    The message names the offending eigenvalue (or the instant at which the state overflowed).
+    ``eigenvalue`` holds it (``None`` for a diverged simulation).
+    """
+
+    def __init__(self, message, eigenvalue=None):
+        super().__init__(message)
+        self.eigenvalue = eigenvalue
+
+
+class SingularFrequencyError(FdscError, ValueError):
+    """A frequency response is requested where it is undefined: a pole of A lies on jω at a
+    frequency of the sweep or band, or a disturbance tone sits at an eigenvalue of a closed loop."""
+
+
+class MemoryLimitError(FdscError, MemoryError):
+    """A requested computation would allocate more memory than the stated limit."""
+
+
+class UnstableRunWarning(UserWarning):
+    """A simulated loop has a mode that is not Hurwitz (its finite results may still grow)."""

@@ -16,20 +16,55 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import minimize_scalar
 
+from ._validation import as_count, as_positive, as_vector, check_hurwitz, check_type
 from .bands import Band
-from .exceptions import IterationLimitError
+from .exceptions import IterationLimitError, SingularFrequencyError
 from .plant import LTISystem
 
-__all__ = ["freqresp", "sigma_max", "BandPeak", "band_peak", "DEFAULT_GRID_POINTS"]
+__all__ = ["freqresp", "sigma_max", "BandPeak", "band_peak", "DEFAULT_GRID_POINTS",
+           "check_no_pole_at"]
 
 #: Grid points per decade-spanning sweep before refinement.
 DEFAULT_GRID_POINTS = 4000
 _MAX_EXTENSIONS = 60
+#: Relative distance below which a frequency counts as sitting on an eigenvalue of A.
+POLE_RTOL = 1e-10
 
 
 def _check_system(sys):
-    if not isinstance(sys, LTISystem):
-        raise TypeError(f"sys must be an fdsc.LTISystem, but found {type(sys).__name__}")
+    check_type("sys", sys, LTISystem)
+
+
+def check_no_pole_at(A, omega, what="G(jω)"):
+    """Raise :class:`SingularFrequencyError` if ``jω`` is (numerically) an eigenvalue of ``A``
+    for some ω in ``omega``.
+
+    Parameters
+    ----------
+    A : (n, n) ndarray
+    omega : (k,) array_like
+        Frequencies in rad/s.
+    what : str
+        What is undefined there (used in the message).
+
+    Examples
+    --------
+    >>> check_no_pole_at(np.array([[0.0, 1.0], [-1.0, 0.0]]), [0.5, 1.0])
+    Traceback (most recent call last):
+    ...
+    fdsc.exceptions.SingularFrequencyError: G(jω) is undefined at ω = 1 rad/s: A has the eigenvalue 1j on the imaginary axis
+    """
+    w = np.asarray(omega, dtype=float).reshape(-1)
+    ev = np.linalg.eigvals(A) if A.size else np.zeros(0)
+    for lam in ev:
+        scale = max(1.0, abs(lam))
+        if abs(lam.real) > POLE_RTOL * scale:
+            continue
+        hit = np.abs(w - lam.imag) <= POLE_RTOL * scale
+        if np.any(hit):
+            raise SingularFrequencyError(
+                f"{what} is undefined at ω = {w[hit][0]:g} rad/s: A has the eigenvalue "
+                f"{lam.imag:g}j on the imaginary axis")
 
 
 def freqresp(sys, omega):
@@ -45,6 +80,11 @@ def freqresp(sys, omega):
     -------
     (k, p, m) complex ndarray
 
+    Raises
+    ------
+    SingularFrequencyError
+        If some ``jω`` is an eigenvalue of A (a pole on the imaginary axis).
+
     Examples
     --------
     >>> sys = LTISystem([[-1.0]], [[1.0]], [[1.0]], [[0.0]])
@@ -52,11 +92,8 @@ def freqresp(sys, omega):
     (0.5-0.5j)
     """
     _check_system(sys)
-    w = np.atleast_1d(np.asarray(omega, dtype=float))
-    if w.ndim != 1:
-        raise ValueError(f"omega must be a scalar or 1-D array, but found shape {w.shape}")
-    if not np.all(np.isfinite(w)):
-        raise ValueError("omega must be finite (rad/s)")
+    w = as_vector("omega", omega)
+    check_no_pole_at(sys.A, w)
     n = sys.n_states
     M = 1j * w[:, None, None] * np.eye(n) - sys.A
     X = np.linalg.solve(M, np.broadcast_to(sys.B.astype(complex), (w.size, n, sys.n_inputs)))
@@ -124,9 +161,10 @@ def band_peak(sys, band, *, n_grid=DEFAULT_GRID_POINTS, xtol=1e-10):
     Parameters
     ----------
     sys : LTISystem
+        A stable system (A Hurwitz): the band peak is then the L2 gain for inputs in the band.
     band : Band
     n_grid : int, optional
-        Points of the initial logarithmic grid.
+        Points of the initial logarithmic grid (≥ 10).
     xtol : float, optional
         Relative tolerance in ω of the local refinement.
 
@@ -136,6 +174,8 @@ def band_peak(sys, band, *, n_grid=DEFAULT_GRID_POINTS, xtol=1e-10):
 
     Raises
     ------
+    UnstableError
+        If A is not Hurwitz (the peak of an unstable loop's frequency response bounds no energy).
     IterationLimitError
         If an infinite band could not be closed off by the tail bound.
 
@@ -151,11 +191,10 @@ def band_peak(sys, band, *, n_grid=DEFAULT_GRID_POINTS, xtol=1e-10):
     (0.099504, 10.0)
     """
     _check_system(sys)
-    if not isinstance(band, Band):
-        raise TypeError(f"band must be an fdsc.Band, but found {type(band).__name__}")
-    if int(n_grid) < 10:
-        raise ValueError(f"n_grid must be at least 10, but found {n_grid}")
-    ev = np.linalg.eigvals(sys.A)
+    check_type("band", band, Band)
+    n_grid = as_count("n_grid", n_grid, 10)
+    xtol = as_positive("xtol", xtol)
+    ev = check_hurwitz("sys", sys.A, "the band peak (an L2 gain)")
     normA = float(np.linalg.norm(sys.A, 2)) if sys.n_states else 0.0
     scale = max(normA, float(np.max(np.abs(ev), initial=0.0)), 1.0)
     extra = list(np.abs(ev.imag)) + list(np.abs(ev))

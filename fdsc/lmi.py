@@ -26,7 +26,7 @@ import cvxpy as cp
 import numpy as np
 from scipy.linalg import cholesky, matrix_balance, solve_continuous_lyapunov
 
-from ._validation import as_positive
+from ._validation import as_positive, check_hurwitz, check_type
 from .bands import Band
 from .exceptions import InfeasibleError, SolverError, VerificationError
 from .frequency import band_peak
@@ -171,7 +171,11 @@ def gkyp_matrix(sys, band, P, Q, gamma):
 
 
 def solve_checked(problem, what):
-    """Solve a cvxpy problem with Clarabel and raise on any failure.
+    """Solve a cvxpy problem with Clarabel and raise on any failure, naming Clarabel's own status.
+
+    The problem is compiled by cvxpy, solved by Clarabel directly and its result unpacked by
+    cvxpy, so that Clarabel's status (``"Solved"``, ``"AlmostSolved"``,
+    ``"InsufficientProgress"``, ``"PrimalInfeasible"``, …) reaches the message and the exception.
 
     Parameters
     ----------
@@ -187,23 +191,32 @@ def solve_checked(problem, what):
     Raises
     ------
     InfeasibleError
-        If the solver reports infeasibility.
+        If Clarabel reports (almost) primal infeasibility.
     SolverError
-        On any other failure.
+        On any other failure; ``exc.status`` is the cvxpy status and ``exc.solver_status``
+        Clarabel's own.
     """
+    opts = dict(SOLVER_OPTIONS)
+    data, chain, inverse = problem.get_problem_data(cp.CLARABEL, solver_opts=opts)
+    raw = chain.solver.solve_via_data(data, False, False, opts)
+    raw_status = str(raw.status)
+    iters = f"{int(raw.iterations)} iterations"
     try:
         with warnings.catch_warnings():
             # cvxpy warns on 'optimal_inaccurate'; that status is returned to the caller and
             # every certificate is verified independently afterwards, so the warning adds nothing
             warnings.filterwarnings("ignore", message="Solution may be inaccurate", category=UserWarning)
-            problem.solve(solver=cp.CLARABEL, **SOLVER_OPTIONS)
-    except cp.error.SolverError as exc:
-        raise SolverError(f"{what}: Clarabel failed ({exc})", "solver_error") from exc
+            problem.unpack_results(raw, chain, inverse)
+    except cp.error.SolverError:
+        raise SolverError(f"{what}: Clarabel stopped with status {raw_status} after {iters}",
+                          cp.SOLVER_ERROR, raw_status) from None
     status = problem.status
     if status in (cp.INFEASIBLE, cp.INFEASIBLE_INACCURATE):
-        raise InfeasibleError(f"{what}: the LMI is infeasible", status)
+        raise InfeasibleError(f"{what}: the LMI is infeasible (Clarabel: {raw_status} after "
+                              f"{iters})", status, raw_status)
     if status not in (cp.OPTIMAL, cp.OPTIMAL_INACCURATE):
-        raise SolverError(f"{what}: no solution", status)
+        raise SolverError(f"{what}: no solution (Clarabel: {raw_status} after {iters})", status,
+                          raw_status)
     return status
 
 
@@ -249,11 +262,19 @@ MARGIN_RETRIES = (1.0, 10.0, 100.0)
 
 
 def _solve(sys, band, gamma, margin):
-    if not isinstance(sys, LTISystem):
-        raise TypeError(f"sys must be an fdsc.LTISystem, but found {type(sys).__name__}")
-    if not isinstance(band, Band):
-        raise TypeError(f"band must be an fdsc.Band, but found {type(band).__name__}")
+    check_type("sys", sys, LTISystem)
+    check_type("band", band, Band)
     margin = as_positive("margin", margin)
+    check_hurwitz("sys", sys.A, "Lemma 1 as an L2-gain certificate")
+    if gamma is not None:
+        # the lemma is lossless: a γ at or below the swept peak has no certificate. Deciding
+        # this before the solver keeps the answer independent of how the solver rounds.
+        pk = band_peak(sys, band)
+        if gamma <= pk.gamma:
+            raise InfeasibleError(
+                f"Lemma 1 on the {band.label} band at gamma={gamma:g}: no certificate exists, "
+                f"sigma_max(G(jw)) reaches {pk.gamma:.6g} >= gamma at w = {pk.omega:.6g} rad/s",
+                "not solved (sweep)")
     nsys, Tinv, s = _normalize(sys, band)
     for k, factor in enumerate(MARGIN_RETRIES):
         try:
@@ -327,8 +348,8 @@ def gkyp_gamma(sys, band, *, margin=DEFAULT_MARGIN):
 
     Raises
     ------
-    InfeasibleError
-        If no finite γ exists (e.g. a pole of A on jΩ).
+    UnstableError
+        If A is not Hurwitz (Lemma 1's γ bounds energy only for a stable loop).
     SolverError
         On solver failure; ``VerificationError`` if the certificate fails its check.
 
@@ -356,11 +377,19 @@ def gkyp_certify(sys, band, gamma, *, margin=DEFAULT_MARGIN):
     gamma : float
         The bound to certify (> 0).
     margin : float, optional
+        Strictness margin of the LMI (normalized problem).
 
     Returns
     -------
     GKYPResult
         With ``gamma`` equal to the argument.
+
+    Raises
+    ------
+    InfeasibleError
+        If ``gamma`` does not exceed the swept band peak (decided before the solver runs).
+    UnstableError
+        If A is not Hurwitz.
 
     Examples
     --------
@@ -368,7 +397,7 @@ def gkyp_certify(sys, band, gamma, *, margin=DEFAULT_MARGIN):
     >>> gkyp_certify(sys, Band.lf(1.0), 0.9)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    fdsc.exceptions.InfeasibleError: Lemma 1 on the LF [0, 1] rad/s band at gamma=0.9: ...
+    fdsc.exceptions.InfeasibleError: Lemma 1 on the LF [0, 1] rad/s band at gamma=0.9: no certificate exists, ...
     """
     gamma = as_positive("gamma", gamma)
     return _solve(sys, band, gamma, margin)

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from fdsc import Band, LTISystem, aircraft, band_peak, freqresp, paper_bands, paper_gains, sigma_max
+from fdsc import Band, DimensionError, LTISystem, aircraft, band_peak, freqresp, paper_bands, paper_gains, sigma_max
 
 
 def first_order(a=1.0):
@@ -75,8 +75,8 @@ def test_band_peak_interior_of_mf():
     ("call", "exc", "match"),
     [
         (lambda: sigma_max("not a system", [1.0]), TypeError, "sys must be an fdsc.LTISystem"),
-        (lambda: sigma_max(first_order(), [[1.0, 2.0]]), ValueError, "omega must be a scalar or 1-D"),
-        (lambda: sigma_max(first_order(), [np.nan]), ValueError, "omega must be finite"),
+        (lambda: sigma_max(first_order(), [[1.0, 2.0]]), DimensionError, "omega must be a 1-D array"),
+        (lambda: sigma_max(first_order(), [np.nan]), ValueError, "omega must have finite entries"),
         (lambda: band_peak(first_order(), "LF"), TypeError, "band must be an fdsc.Band"),
         (lambda: band_peak(first_order(), Band.lf(1.0), n_grid=3), ValueError, "n_grid must be"),
     ],
