@@ -22,15 +22,15 @@ import cvxpy as cp
 import numpy as np
 from scipy.optimize import minimize
 
-from ._validation import as_finite_real, as_positive
+from ._validation import as_count, as_matrix, as_nonnegative, as_positive, check_type
 from .bands import Band
-from .exceptions import IterationLimitError, VerificationError
+from .exceptions import InfeasibleError, IterationLimitError, VerificationError
 from .frequency import band_peak, sigma_max
 from .lmi import DEFAULT_MARGIN, _sym, real_embedding_parts, solve_checked
 from .plant import Plant
 
 __all__ = ["SynthesisResult", "DirectResult", "synthesize", "synthesize_hinf", "optimize_gain",
-           "DEFAULT_EPSILON", "DEFAULT_SIGMA", "SWEEP_RTOL"]
+           "check_stabilizable", "DEFAULT_EPSILON", "DEFAULT_SIGMA", "SWEEP_RTOL", "PBH_RTOL"]
 
 #: ε of the stability LMI (slack [εI; I]Xᵀ); the chapter shows its influence.
 DEFAULT_EPSILON = 1e-2
@@ -38,6 +38,55 @@ DEFAULT_EPSILON = 1e-2
 DEFAULT_SIGMA = 0.0
 #: Relative tolerance allowed between the sweep γ and the LMI γ (solver accuracy).
 SWEEP_RTOL = 1e-5
+#: PBH rank test: [A − λI, B2] counts as rank deficient when its smallest singular value is below
+#: PBH_RTOL · ‖[A, B2]‖₂.
+PBH_RTOL = 1e-9
+
+
+def check_stabilizable(plant, *, rtol=PBH_RTOL):
+    """PBH test: raise :class:`InfeasibleError` if ``(A, B2)`` has an uncontrollable eigenvalue
+    with real part ≥ 0, which no state feedback can move.
+
+    Runs before every synthesis that asks for a stabilizing gain, so that a specification that is
+    infeasible for this reason is reported the same way on every machine (the LMIs are
+    homogeneous; without the test the solver's verdict would hang on its strictness margin).
+
+    Parameters
+    ----------
+    plant : Plant
+    rtol : float, optional
+        Relative rank tolerance (see :data:`PBH_RTOL`).
+
+    Raises
+    ------
+    InfeasibleError
+        Naming the uncontrollable unstable eigenvalue; ``status`` is ``"not solved (PBH test)"``.
+
+    Examples
+    --------
+    >>> p = Plant([[1.0, 0.0], [0.0, -1.0]], [[1.0], [1.0]], [[0.0], [1.0]], [[1.0, 1.0]],
+    ...           [[0.0]], [[0.0]])
+    >>> check_stabilizable(p)
+    Traceback (most recent call last):
+    ...
+    fdsc.exceptions.InfeasibleError: plant: the eigenvalue 1 of A is not controllable from B2 (PBH test, smallest singular value of [A - lambda I, B2] = 0), so no state feedback stabilizes the loop (status: not solved (PBH test))
+    """
+    check_type("plant", plant, Plant)
+    rtol = as_positive("rtol", rtol)
+    A, B2 = plant.A, plant.B2
+    n = A.shape[0]
+    scale = max(float(np.linalg.norm(np.hstack([A, B2]), 2)), np.finfo(float).tiny)
+    for lam in np.linalg.eigvals(A):
+        if lam.real < 0:
+            continue
+        smin = float(np.linalg.svd(np.hstack([A - lam * np.eye(n), B2]), compute_uv=False)[-1]) \
+            if n else 1.0
+        if smin <= rtol * scale:
+            name = f"{lam.real:.6g}" if lam.imag == 0 else f"{lam:.6g}"
+            raise InfeasibleError(
+                f"plant: the eigenvalue {name} of A is not controllable from B2 (PBH test, smallest "
+                f"singular value of [A - lambda I, B2] = {smin:.3g}), so no state feedback "
+                f"stabilizes the loop", "not solved (PBH test)")
 
 
 @dataclass(frozen=True)
@@ -76,10 +125,8 @@ class SynthesisResult:
 
 
 def _check(plant, band):
-    if not isinstance(plant, Plant):
-        raise TypeError(f"plant must be an fdsc.Plant, but found {type(plant).__name__}")
-    if not isinstance(band, Band):
-        raise TypeError(f"band must be an fdsc.Band, but found {type(band).__name__}")
+    check_type("plant", plant, Plant)
+    check_type("band", band, Band)
 
 
 def _herm_pair(n, name, cplx):
@@ -145,8 +192,13 @@ def synthesize(plant, band, *, epsilon=DEFAULT_EPSILON, sigma=DEFAULT_SIGMA,
 
     Raises
     ------
-    InfeasibleError, SolverError
-        If the LMIs are infeasible or the solve fails.
+    InfeasibleError
+        If ``stability`` is set and the PBH test finds an uncontrollable eigenvalue with real
+        part ≥ 0 (decided before the solver runs), or if the solver reports the LMIs infeasible.
+    SolverError
+        If the solve fails (the message names Clarabel's status).
+    VerificationError
+        If the returned gain fails its a-posteriori checks (Hurwitz, sweep ≤ LMI bound).
 
     Examples
     --------
@@ -159,10 +211,12 @@ def synthesize(plant, band, *, epsilon=DEFAULT_EPSILON, sigma=DEFAULT_SIGMA,
     if band.kind == "EF":
         raise ValueError("band: use synthesize_hinf for the entire frequency range")
     epsilon = as_positive("epsilon", epsilon)
-    sigma = as_finite_real("sigma", sigma)
-    if sigma < 0:
-        raise ValueError(f"sigma must be >= 0, but found {sigma}")
+    sigma = as_nonnegative("sigma", sigma)
     margin = as_positive("margin", margin)
+    if not isinstance(stability, bool):
+        raise TypeError(f"stability must be True or False, but found {stability!r}")
+    if stability:
+        check_stabilizable(plant)
     n, mu, p = plant.n_states, plant.n_controls, plant.C.shape[0]
     cplx = band.is_complex
     X = cp.Variable((n, n), name="X")
@@ -221,6 +275,24 @@ def synthesize_hinf(plant, *, margin=DEFAULT_MARGIN):
     Dual bounded-real lemma with ``X = Xᵀ > 0``:
     ``[[He(Z_A) + B1B1ᵀ, Z_Cᵀ + B1D1ᵀ], [·, D1D1ᵀ − γ²I]] < 0``, ``K = Y X⁻¹``.
 
+    Parameters
+    ----------
+    plant : Plant
+    margin : float, optional
+        Strictness margin of the LMI.
+
+    Returns
+    -------
+    SynthesisResult
+
+    Raises
+    ------
+    InfeasibleError
+        If the PBH test finds an uncontrollable eigenvalue with real part ≥ 0 (before solving),
+        or if the solver reports the LMI infeasible.
+    SolverError, VerificationError
+        As for :func:`synthesize`.
+
     Examples
     --------
     >>> from fdsc import aircraft
@@ -228,9 +300,9 @@ def synthesize_hinf(plant, *, margin=DEFAULT_MARGIN):
     >>> bool(res.gamma_sweep <= res.gamma_lmi * (1 + 1e-5))
     True
     """
-    if not isinstance(plant, Plant):
-        raise TypeError(f"plant must be an fdsc.Plant, but found {type(plant).__name__}")
+    check_type("plant", plant, Plant)
     margin = as_positive("margin", margin)
+    check_stabilizable(plant)
     n, mu, p = plant.n_states, plant.n_controls, plant.C.shape[0]
     X = cp.Variable((n, n), symmetric=True, name="X")
     Y = cp.Variable((mu, n), name="Y")
@@ -310,10 +382,15 @@ def optimize_gain(plant, band, K0, *, n_starts=4, spread=0.5, n_grid=400, maxite
         If no start converged within ``maxiter`` iterations.
     """
     _check(plant, band)
-    plant.closed_loop(K0)  # validates the shape of K0
-    K0 = np.array(K0, dtype=float)
-    rng = np.random.default_rng(0) if rng is None else rng
-    w = _objective_grid(band, int(n_grid))
+    K0 = np.array(as_matrix("K0", K0, (plant.n_controls, plant.n_states)))
+    n_starts = as_count("n_starts", n_starts)
+    spread = as_nonnegative("spread", spread)
+    n_grid = as_count("n_grid", n_grid, 2)
+    maxiter = as_count("maxiter", maxiter)
+    if rng is None:
+        rng = np.random.default_rng(0)
+    check_type("rng", rng, np.random.Generator, "a numpy.random.Generator")
+    w = _objective_grid(band, n_grid)
     k_max = 100.0 * max(1.0, float(np.linalg.norm(K0))) if k_max is None else as_positive(
         "k_max", k_max)
     evals = 0

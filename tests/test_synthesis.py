@@ -6,7 +6,7 @@ from numpy.testing import assert_allclose
 from fdsc import Band, InfeasibleError, Plant, aircraft, band_peak, paper_bands, paper_gains
 from fdsc.lmi import gkyp_gamma
 from fdsc.passive import gain_verdict, random_plant
-from fdsc.synthesis import SWEEP_RTOL, optimize_gain, synthesize, synthesize_hinf
+from fdsc.synthesis import SWEEP_RTOL, check_stabilizable, optimize_gain, synthesize, synthesize_hinf
 
 
 @pytest.mark.parametrize("kind", ["LF", "MF", "HF"])
@@ -90,11 +90,27 @@ def test_infeasible_specification():
     plant = Plant([[-1.0]], [[1.0]], [[1.0]], [[0.0]], [[2.0]], [[0.0]])
     res = synthesize_hinf(plant)
     assert_allclose(res.gamma_lmi, 2.0, rtol=1e-4)
-    # and an uncontrollable unstable mode cannot be stabilized: the stability LMI is infeasible
+    # an uncontrollable unstable mode cannot be stabilized: the PBH test says so before any solve,
+    # so the error does not depend on how the solver rounds (Clarabel may stop with
+    # InsufficientProgress on this homogeneous LMI on some CPUs)
     unstab = Plant([[1.0, 0.0], [0.0, -1.0]], [[0.0], [1.0]], [[0.0], [1.0]], [[1.0, 1.0]],
                    [[0.0]], [[0.0]])
-    with pytest.raises(InfeasibleError):
-        synthesize(unstab, Band.lf(1.0))
+    for call in (lambda: synthesize(unstab, Band.lf(1.0)), lambda: synthesize_hinf(unstab),
+                 lambda: synthesize(unstab, Band.hf(5.0), sigma=1.0)):
+        with pytest.raises(InfeasibleError, match="eigenvalue 1 of A is not controllable") as info:
+            call()
+        assert info.value.status == "not solved (PBH test)"
+
+
+@pytest.mark.parametrize("eig", [0.0, 2.5, 1e-3])
+def test_pbh_test_names_the_uncontrollable_eigenvalue(eig):
+    # a controllable unstable mode passes; the uncontrollable one with Re >= 0 is named
+    plant = Plant([[eig, 0.0], [0.0, 3.0]], [[1.0], [1.0]], [[0.0], [1.0]], [[1.0, 1.0]], [[0.0]],
+                  [[0.0]])
+    with pytest.raises(InfeasibleError, match=f"eigenvalue {eig:.6g} of A is not controllable"):
+        check_stabilizable(plant)
+    check_stabilizable(Plant([[eig, 0.0], [0.0, 3.0]], [[1.0], [1.0]], [[1.0], [1.0]],
+                             [[1.0, 1.0]], [[0.0]], [[0.0]]))
 
 
 @pytest.mark.parametrize(
@@ -106,7 +122,7 @@ def test_infeasible_specification():
         (lambda: synthesize("plant", Band.lf(1.0)), TypeError, "plant must be an fdsc.Plant"),
         (lambda: synthesize_hinf(None), TypeError, "plant must be an fdsc.Plant"),
         (lambda: optimize_gain(aircraft(), Band.lf(1.0), np.ones((1, 2))), ValueError,
-         r"K: expected shape \(2, 2\)"),
+         r"K0: expected shape \(2, 2\)"),
     ],
 )
 def test_bad_synthesis_inputs(call, exc, match):
