@@ -1,27 +1,92 @@
-"""Check a built book: images exist and are non-empty, internal links resolve, nothing is fetched
-from the web when a page loads (no external scripts, stylesheets or images), and MathJax is the
-book's own copy.
+r"""Check a built book: images exist and are non-empty, internal links resolve, nothing is fetched
+from the web when a page loads (no external scripts, stylesheets or images), MathJax is the
+book's own copy, and no page shows TeX that was not typeset.
 
 Usage: ``python tests/check_book_html.py book/_build/html``. Exits non-zero on any problem.
 Run by ``.ci/run`` after the book build (a figure that silently fails to render, e.g. when a
 non-inline matplotlib backend is forced, leaves a chapter without images).
+
+Raw TeX
+-------
+A page's *visible text* is its text minus what the reader does not see as prose: ``<head>``
+(so ``<title>``), ``<script>``, ``<style>``, ``<noscript>``, ``<template>``, code (``<code>``,
+``<pre>``, ``<kbd>``, ``<samp>``, ``<tt>``, class ``highlight``, notebook input areas
+``cell_input``/``input_area``/``jp-InputArea``) and maths that MathJax typesets (``<math>``,
+class ``math``, ``MathJax`` or ``mjx-*``, ``mjx-*`` elements). Sphinx writes inline maths as
+``<span class="math">\(...\)</span>`` and display maths as ``<div class="math">\[...\]</div>``;
+MathJax is told to typeset only those (the chapters carry ``mathjax_ignore``), so TeX anywhere
+else reaches the reader as source. In the visible text, raw TeX is:
+
+1. two dollar signs with nothing but whitespace between them: ``$$``, and also what is left of
+   ``$<span class="math">...</span>$``, the trace of display maths written inside a sentence
+   or list item;
+2. a ``$...$`` pair on one line whose content is at most 80 characters, starts with a
+   non-space character and looks like TeX: it holds a backslash followed by a letter, or a
+   ``_``/``^`` after a non-space character and before ``{``, ``\`` or a letter or digit
+   (``$H_\infty $``, ``$x_1$``). A lone ``$`` and prices (``$5 or $3``) are not TeX; a pair
+   enclosing only letters (``$x$``) cannot be told from prose and is not reported;
+3. a TeX control word, a backslash followed by two or more ASCII letters (``\begin``, ``\left``,
+   ``\frac``, ``\sigma``, ...), or a MathJax delimiter ``\(``, ``\)``, ``\[``, ``\]`` outside a
+   maths element. Prose has no other use for a backslash before a word; code, where
+   ``C:\Users`` or ``"\n"`` belongs, is not visible text. Single-letter escapes (``\n``) are
+   not reported.
+
+:func:`raw_tex_snippets` applies these rules to any text; ``tests/test_browser.py`` uses it on
+the text a browser shows once MathJax has run.
 """
 
+import re
 import sys
 from html.parser import HTMLParser
+from itertools import pairwise
 from pathlib import Path
 from urllib.parse import unquote, urlparse
+
+__all__ = ["check", "visible_text", "raw_tex_snippets"]
 
 #: Chapters and the least number of figures each must show.
 MIN_IMAGES = {"frequency_ranges.html": 3, "gkyp_lemma.html": 1, "passive_controllers.html": 3,
               "frequency_selective.html": 3, "theorem1.html": 1, "switching_law.html": 2,
               "stationary.html": 4}
+#: Raw-TeX findings reported per page (the rest are counted).
+MAX_TEX_REPORTS = 3
+
+#: Elements whose text is not prose: metadata, code and maths that MathJax typesets.
+_HIDDEN_TAGS = {"head", "title", "script", "style", "noscript", "template", "code", "pre", "kbd",
+                "samp", "tt", "math"}
+_HIDDEN_CLASSES = {"highlight", "cell_input", "input_area", "jp-InputArea", "math", "MathJax"}
+_VOID_TAGS = {"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta", "param",
+              "source", "track", "wbr"}
+#: Elements that start a new line of text (so that text of two blocks never runs together).
+_BLOCK_TAGS = {"address", "article", "aside", "blockquote", "br", "caption", "dd", "div", "dl",
+               "dt", "figcaption", "figure", "footer", "h1", "h2", "h3", "h4", "h5", "h6", "header",
+               "hr", "li", "main", "nav", "ol", "p", "section", "table", "td", "th", "tr", "ul"}
+
+_DOUBLE_DOLLAR = re.compile(r"\$\s*\$")
+_CONTROL_WORD = re.compile(r"\\(?:[A-Za-z]{2,}|[()\[\]])")
+_TEX_IN_PAIR = re.compile(r"\\[A-Za-z]|\S[_^][{\\A-Za-z0-9]")
+_PAIR_MAX = 80
+_CONTEXT = 40
+
+
+def _hidden(tag, attrs):
+    if tag in _HIDDEN_TAGS or tag.startswith("mjx-"):
+        return True
+    classes = (dict(attrs).get("class") or "").split()
+    return any(c in _HIDDEN_CLASSES or c.startswith("mjx-") for c in classes)
 
 
 class _Collector(HTMLParser):
     def __init__(self):
         super().__init__()
         self.images, self.links, self.loads = [], [], []
+        self._text = []
+        self._open = []  # (tag, hidden) of each open element
+        self._n_hidden = 0
+
+    @property
+    def text(self):
+        return "".join(self._text)
 
     def handle_starttag(self, tag, attrs):
         a = dict(attrs)
@@ -33,6 +98,91 @@ class _Collector(HTMLParser):
             self.loads.append(a["src"])
         if tag == "link" and a.get("rel") in ("stylesheet", "preload") and a.get("href"):
             self.loads.append(a["href"])
+        if tag in _BLOCK_TAGS and not self._n_hidden:
+            self._text.append("\n")
+        if tag not in _VOID_TAGS:
+            hidden = _hidden(tag, attrs)
+            self._open.append((tag, hidden))
+            self._n_hidden += hidden
+
+    def handle_endtag(self, tag):
+        # close up to the matching element (HTML lets some end tags be omitted); stray ones are ignored
+        for i in range(len(self._open) - 1, -1, -1):
+            if self._open[i][0] == tag:
+                self._n_hidden -= sum(h for _, h in self._open[i:])
+                del self._open[i:]
+                break
+        if tag in _BLOCK_TAGS and not self._n_hidden:
+            self._text.append("\n")
+
+    def handle_data(self, data):
+        if not self._n_hidden:
+            self._text.append(data)
+
+
+def visible_text(html):
+    """Text of an HTML page that a reader sees as prose (see the module docstring).
+
+    Parameters
+    ----------
+    html : str
+        A whole page or a fragment.
+
+    Returns
+    -------
+    str
+        The text, blocks separated by newlines. Typeset maths is dropped without a trace, so
+        ``$<span class="math">\\(x\\)</span>$`` leaves ``$$``.
+    """
+    c = _Collector()
+    c.feed(html)
+    c.close()
+    return c.text
+
+
+def _tex_spans(text):
+    spans = [m.span() for m in _DOUBLE_DOLLAR.finditer(text)]
+    spans += [m.span() for m in _CONTROL_WORD.finditer(text)]
+    dollars = [m.start() for m in re.finditer(r"\$", text)]
+    for i, j in pairwise(dollars):
+        inner = text[i + 1:j]
+        if (0 < len(inner) <= _PAIR_MAX and "\n" not in inner and not inner[0].isspace()
+                and _TEX_IN_PAIR.search(inner)):
+            spans.append((i, j + 1))
+    return sorted(spans)
+
+
+def raw_tex_snippets(text):
+    r"""Places where `text` shows TeX source, by the rules of the module docstring.
+
+    Parameters
+    ----------
+    text : str
+        Visible text of a page (:func:`visible_text`, or a browser's ``innerText``).
+
+    Returns
+    -------
+    list of str
+        One snippet per group of findings, the first finding with up to 40 characters on each
+        side, whitespace collapsed; findings closer than 40 characters to the previous one
+        join its group. Empty when there is no raw TeX.
+
+    Examples
+    --------
+    >>> raw_tex_snippets(r"Reliable $H_\infty $ control, for $5 or $3.")
+    ['Reliable $H_\\infty $ control, for $5 or $3.']
+    >>> raw_tex_snippets("A price of $5 or $3; typeset maths was removed.")
+    []
+    """
+    snippets, group_end = [], None
+    for start, end in _tex_spans(text):
+        if group_end is not None and start <= group_end + _CONTEXT:
+            group_end = max(group_end, end)
+            continue
+        group_end = end
+        window = text[max(0, start - _CONTEXT):end + _CONTEXT]
+        snippets.append(" ".join(window.split()))
+    return snippets
 
 
 def check(root):
@@ -41,6 +191,7 @@ def check(root):
     for page in sorted(root.glob("*.html")):
         c = _Collector()
         c.feed(page.read_text(encoding="utf-8"))
+        c.close()
         for src in c.images:
             if urlparse(src).scheme:
                 problems.append(f"{page.name}: external image {src}")
@@ -62,10 +213,15 @@ def check(root):
             target = (page.parent / unquote(u.path)).resolve()
             if not target.exists():
                 problems.append(f"{page.name}: broken link {href}")
+        tex = raw_tex_snippets(c.text)
+        problems += [f"{page.name}: raw TeX in visible text: '{s}'" for s in tex[:MAX_TEX_REPORTS]]
+        if len(tex) > MAX_TEX_REPORTS:
+            problems.append(f"{page.name}: raw TeX in visible text: {len(tex) - MAX_TEX_REPORTS} more")
     return problems
 
 
 if __name__ == "__main__":
     found = check(sys.argv[1] if len(sys.argv) > 1 else "book/_build/html")
-    print("\n".join(found) or "book HTML: images present, internal links resolve, no web loads")
+    print("\n".join(found) or "book HTML: images present, internal links resolve, no web loads, "
+                              "no raw TeX")
     sys.exit(1 if found else 0)

@@ -3,14 +3,17 @@
 Run after the book build: ``python -m pytest -m browser tests/test_browser.py``. Needs Debian's
 ``chromium`` (``/usr/bin/chromium``, or the path in ``FDSC_CHROMIUM``) and the ``playwright``
 package; Playwright's own browser download is not used. Screenshots of two pages are saved in
-``book/_build/screenshots`` as CI artifacts.
+``book/_build/screenshots`` as CI artifacts. Once MathJax has run, the text a page shows (minus
+MathJax's output and code) must hold no TeX source (``check_book_html.raw_tex_snippets``).
 """
 
 import os
+import shutil
 from pathlib import Path
 from urllib.parse import urlparse
 
 import pytest
+from check_book_html import raw_tex_snippets
 
 pytestmark = pytest.mark.browser
 
@@ -23,6 +26,18 @@ MATH_PAGES = ("intro.html", "frequency_ranges.html", "gkyp_lemma.html", "passive
               "frequency_selective.html", "theorem1.html", "switching_law.html", "stationary.html")
 #: Pages screenshotted for the CI artifacts.
 SHOT_PAGES = ("frequency_ranges.html", "gkyp_lemma.html")
+#: What MathJax produced, and code: not prose. Elements of class ``math`` stay, so maths that
+#: MathJax did not typeset shows as ``\(...\)`` and is reported.
+NOT_PROSE = ("mjx-container, script, style, noscript, template, pre, code, kbd, samp, tt, "
+             ".highlight, .cell_input")
+#: The page's visible text without NOT_PROSE. The live page is changed (it is closed afterwards):
+#: the innerText of a detached copy would be its textContent, hidden elements included.
+VISIBLE_TEXT = f"""() => {{
+    document.querySelectorAll({NOT_PROSE!r}).forEach(e => e.remove());
+    return document.body.innerText;
+}}"""
+#: A page with display maths inside a list item and a paragraph, as Jupyter Book 1 builds it.
+RAW_TEX_PAGE = Path(__file__).resolve().parent / "fixtures" / "raw_tex_page.html"
 CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
                  "--disable-background-networking", "--disable-component-update", "--disable-sync"]
 
@@ -98,3 +113,26 @@ def test_page_renders_offline(page, name):
     if name in SHOT_PAGES:
         SHOTS.mkdir(parents=True, exist_ok=True)
         page.screenshot(path=str(SHOTS / name.replace(".html", ".png")), full_page=True)
+    # pages outside MATH_PAGES may load MathJax too; its text is read once typesetting is done
+    page.evaluate("async () => { if (window.MathJax?.startup?.promise) await MathJax.startup.promise; }")
+    raw = raw_tex_snippets(page.evaluate(VISIBLE_TEXT))
+    assert raw == [], f"{name}: raw TeX in visible text: " + "; ".join(f"'{s}'" for s in raw[:3])
+
+
+def test_raw_tex_is_found_in_a_page_built_with_the_defect(page, tmp_path):
+    mathjax = HTML / "_static" / "mathjax"
+    if not mathjax.is_dir():
+        pytest.fail(f"no MathJax in {mathjax}; run `jupyter-book build book` first")
+    shutil.copy(RAW_TEX_PAGE, tmp_path / "defect.html")
+    (tmp_path / "_static").mkdir()
+    (tmp_path / "_static" / "mathjax").symlink_to(mathjax, target_is_directory=True)
+    page.goto((tmp_path / "defect.html").as_uri(), wait_until="load")
+    page.evaluate("() => MathJax.startup.promise")
+    # the page's well-formed maths (one inline, one display, and the pieces of the broken $$)
+    assert page.locator("mjx-container").count() >= 2
+    assert page.locator(".math:not(:has(mjx-container))").count() == 0
+    raw = raw_tex_snippets(page.evaluate(VISIBLE_TEXT))
+    assert len(raw) == 3, raw
+    assert "quadratic form with matrix $$ is negative" in raw[0]
+    assert r"\left[\begin{smallmatrix}" in raw[1]
+    assert r"Reliable $H_\infty $ control" in raw[2]

@@ -1,8 +1,24 @@
-from check_book_html import check
+import shutil
+from pathlib import Path
+
+import pytest
+from check_book_html import MAX_TEX_REPORTS, check, raw_tex_snippets, visible_text
+
+#: What Jupyter Book 1 writes for display maths inside a list item and a paragraph and for a
+#: bibliography title with maths (provenance in the file's opening comment).
+SPHINX_PAGE = Path(__file__).resolve().parent / "fixtures" / "raw_tex_page.html"
+SMALLMATRIX = r"\left[\begin{smallmatrix}a\end{smallmatrix}\right]"
+#: Text long enough to keep two findings in separate snippets.
+FILLER = "The band LMI is solved once for every frequency range of the aircraft model."
 
 
-def write(tmp_path, name, body):
-    (tmp_path / name).write_text(f"<html><body>{body}</body></html>", encoding="utf-8")
+def write(tmp_path, name, body, head=""):
+    (tmp_path / name).write_text(f"<html><head>{head}</head><body>{body}</body></html>",
+                                 encoding="utf-8")
+
+
+def tex_problems(tmp_path):
+    return [p for p in check(tmp_path) if "raw TeX" in p]
 
 
 def test_clean_page_passes(tmp_path):
@@ -24,3 +40,90 @@ def test_problems_are_reported(tmp_path):
     assert "broken link missing.html" in found
     assert "from the web" in found
     assert "does not load the book's own MathJax" in found
+
+
+def test_raw_tex_in_paragraph_list_item_and_citation_is_reported(tmp_path):
+    write(tmp_path, "page.html",
+          f"<p>{FILLER} with slack $${SMALLMATRIX}$$ in the paragraph. {FILLER}</p>"
+          f"<ol><li><p>{FILLER} The list item has $${SMALLMATRIX}$$ too.</p></li></ol>"
+          f'<div class="citation"><p>{FILLER} D. Ye. Reliable $H_\\infty $ control. 2004.</p></div>')
+    found = check(tmp_path)
+    assert len(found) == 3, found
+    assert all(p.startswith("page.html: raw TeX in visible text: '") for p in found)
+    assert r"with slack $$\left[\begin{smallm" in found[0]
+    assert r"The list item has $$\left[\begin{smallm" in found[1]
+    assert r"Reliable $H_\infty $ control. 2004.'" in found[2]
+
+
+def test_typeset_maths_code_and_metadata_are_not_reported(tmp_path):
+    write(tmp_path, "page.html",
+          f'<p>Inline <span class="math notranslate nohighlight">\\({SMALLMATRIX}\\)</span>, '
+          "costs $5 or $3, a lone $ sign.</p>"
+          f'<div class="math notranslate nohighlight"><span class="eqno">(1)</span>'
+          f"\\[{SMALLMATRIX} \\frac{{1}}{{2}}\\]</div>"
+          '<div class="citation"><p>Reliable <span class="math">\\(H_\\infty\\)</span> control.</p>'
+          '<a href="#c" title="Reliable $H_\\infty $ control">[1]</a></div>'
+          "<pre>$ pip install fdsc  # $x_1$ \\alpha</pre>"
+          '<div class="highlight-bash notranslate"><div class="highlight"><pre><span>$</span> '
+          "echo $HOME_DIR $$</pre></div></div>"
+          '<div class="cell_input"><div>print(r"$\\sigma_1$")</div></div>'
+          "<p>Run <code>$$\\frac{a}{b}$$</code>, press <kbd>\\left</kbd>; "
+          "<samp>$x_1$</samp> <tt>\\begin</tt></p>"
+          "<noscript>\\begin{x}</noscript><style>p::before { content: '$$' }</style>"
+          '<script>const s = "$x_1$ \\\\frac";</script><mjx-container>\\frac</mjx-container>'
+          '<math><mi>\\sigma</mi></math><span class="MathJax">$$</span>',
+          head="<title>$H_\\infty$ \\frac{a}{b}</title>")
+    assert check(tmp_path) == []
+
+
+@pytest.mark.parametrize("tex", ["$$x = 1$$", "$ $", r"\begin{bmatrix}", r"\end{bmatrix}",
+                                 r"\left(", r"\right)", r"\frac{1}{2}", r"\mathbf{x}", r"\sigma",
+                                 r"\operatorname{He}", r"\(x\)", r"\[x\]", "$x_1$", "$x^2$",
+                                 r"$H_\infty $", "$A_K^{-1}$", r"$\gamma$"])
+def test_each_raw_tex_pattern_is_reported(tmp_path, tex):
+    write(tmp_path, "page.html", f"<p>The bound {tex} holds.</p>")
+    assert tex_problems(tmp_path) == [f"page.html: raw TeX in visible text: 'The bound {tex} holds.'"]
+
+
+@pytest.mark.parametrize("prose", ["costs $5 or $3", "a lone $ sign", "US$ 40 and $ 30_000 $",
+                                   "$x$ has no TeX command", "snake_case and x^2 outside dollars",
+                                   r"the escape \n in prose", "a $ ends a line,\nand $x_1 starts the next",
+                                   "$" + "x_1 " * 30 + "$ is too long for inline maths"])
+def test_prose_with_dollars_is_not_reported(tmp_path, prose):
+    write(tmp_path, "page.html", f"<p>{prose}</p>")
+    assert tex_problems(tmp_path) == []
+
+
+def test_only_the_first_findings_of_a_page_are_listed(tmp_path):
+    write(tmp_path, "page.html", "".join(f"<p>{FILLER} \\sigma_{i}</p>" for i in range(5)))
+    found = tex_problems(tmp_path)
+    assert len(found) == MAX_TEX_REPORTS + 1
+    assert found[-1] == f"page.html: raw TeX in visible text: {5 - MAX_TEX_REPORTS} more"
+
+
+def test_visible_text_drops_typeset_maths_and_separates_blocks():
+    html = ('<p>matrix\n$<span class="math notranslate nohighlight">\\(\\Theta\\)</span>$\nis</p>'
+            "<ul><li>one<br>two<img src='x.png'></li><li>three</ul><p>four</span>five</p>"
+            "<pre>code</pre>six")
+    lines = [line for line in visible_text(html).split("\n") if line]
+    assert lines == ["matrix", "$$", "is", "one", "two", "three", "fourfive", "six"]
+
+
+def test_page_built_by_sphinx_with_display_maths_in_prose_is_reported(tmp_path):
+    shutil.copy(SPHINX_PAGE, tmp_path / "defect.html")
+    found = check(tmp_path)
+    assert len(found) == 3, found
+    assert all(p.startswith("defect.html: raw TeX in visible text: '") for p in found)
+    # the list item: $<span class="math">...</span>$
+    assert "quadratic form with matrix $$ is negative on the subspace" in found[0]
+    # the paragraph: dollars paired across the two $$ leave TeX outside any maths element
+    assert r"\left[\begin{smallmatrix}" in found[1]
+    # the bibliography entry (sphinxcontrib-bibtex keeps the title's TeX as text)
+    assert r"Reliable $H_\infty $ control" in found[2]
+
+
+def test_sphinx_page_finds_no_tex_in_typeset_maths_or_code():
+    text = visible_text(SPHINX_PAGE.read_text(encoding="utf-8"))
+    for typeset_or_code in ("a_1", "x = ", "pip install", "cell output", "$HOME", "Defect &"):
+        assert typeset_or_code not in text
+    assert len(raw_tex_snippets(text)) == 3
