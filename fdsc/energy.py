@@ -17,8 +17,9 @@ import numpy as np
 from scipy.integrate import quad, simpson
 from scipy.linalg import solve_continuous_lyapunov
 
-from ._validation import as_matrix
+from ._validation import as_matrix, as_vector, check_hurwitz, check_type
 from .bands import Band
+from .exceptions import DimensionError
 from .signals import Sinusoids
 
 __all__ = [
@@ -46,25 +47,27 @@ def check_weight(Q, n):
     Q = as_matrix("Q", Q, (n, n))
     if not np.allclose(Q, Q.T, rtol=1e-12, atol=1e-12 * max(1.0, np.abs(Q).max())):
         raise ValueError("Q must be symmetric")
-    if np.linalg.eigvalsh(Q).min() <= 0:
-        raise ValueError(f"Q must be positive definite; its smallest eigenvalue is "
-                         f"{np.linalg.eigvalsh(Q).min():.3g}")
+    qmin = float(np.linalg.eigvalsh(Q).min())
+    if qmin <= 0:
+        raise ValueError(f"Q must be positive definite; its smallest eigenvalue is {qmin:.3g}")
     return Q
 
 
 def _band(band):
-    if not isinstance(band, Band):
-        raise TypeError(f"band must be an fdsc.Band, but found {type(band).__name__}")
+    check_type("band", band, Band)
     return band.psi.real
 
 
 def _trajectory(x, xdot):
-    x = np.asarray(x, dtype=float)
-    xdot = np.asarray(xdot, dtype=float)
-    if x.ndim != 2 or x.shape != xdot.shape:
-        raise ValueError(f"x and xdot must be (N, n) arrays of equal shape, found {x.shape} "
-                         f"and {xdot.shape}")
+    x = as_matrix("x", x)
+    xdot = as_matrix("xdot", xdot, x.shape)
     return x, xdot
+
+
+def _state_matrix(A, what):
+    A = as_matrix("A", A, square=True)
+    check_hurwitz("A", A, what)
+    return A
 
 
 def instantaneous_power(x, xdot, band, Q):
@@ -111,18 +114,28 @@ def fdeef(t, x, xdot, band, Q):
     -------
     float
     """
-    t = np.asarray(t, dtype=float)
-    if t.ndim != 1 or t.size < 3 or np.any(np.diff(t) <= 0):
+    t = as_vector("t", t)
+    if t.size < 3 or np.any(np.diff(t) <= 0):
         raise ValueError("t must be an increasing 1-D array of at least 3 samples (the window)")
     p = instantaneous_power(x, xdot, band, Q)
     if p.size != t.size:
-        raise ValueError(f"t has {t.size} samples but x has {p.size}")
+        raise DimensionError(f"t has {t.size} samples but x has {p.size} rows")
     return float(simpson(p, x=t))
 
 
 def average_power(t, x, xdot, band, Q):
-    """Average FD-EPF ``P_a = S(Ω, Q, T_l) / |T_l|`` over the sampled window."""
-    t = np.asarray(t, dtype=float)
+    """Average FD-EPF ``P_a = S(Ω, Q, T_l) / |T_l|`` over the sampled window.
+
+    Parameters
+    ----------
+    t, x, xdot, band, Q
+        As for :func:`fdeef`.
+
+    Returns
+    -------
+    float
+    """
+    t = as_vector("t", t)
     return fdeef(t, x, xdot, band, Q) / (t[-1] - t[0])
 
 
@@ -170,15 +183,18 @@ def steady_state_power(A, B, d, band, Q):
     Returns
     -------
     PowerSplit
+
+    Raises
+    ------
+    UnstableError
+        If A is not Hurwitz (no steady state exists).
     """
-    A = as_matrix("A", A, square=True)
+    A = _state_matrix(A, "a steady state")
     n = A.shape[0]
     B = as_matrix("B", B, (n, 1))
     Q = check_weight(Q, n)
-    if not isinstance(d, Sinusoids):
-        raise TypeError(f"d must be fdsc.signals.Sinusoids, found {type(d).__name__}")
-    if np.any(np.linalg.eigvals(A).real >= 0):
-        raise ValueError("A must be Hurwitz for a steady state to exist")
+    check_type("d", d, Sinusoids, "an fdsc.signals.Sinusoids")
+    check_type("band", band, Band)
     if np.unique(d.frequencies).size != d.frequencies.size:
         raise ValueError("d must have distinct frequencies")
     contrib = np.empty(d.frequencies.size)
@@ -204,14 +220,30 @@ def fdeef_autonomous(A, x0, band, Q):
 
     ``S = ∫₀^∞ [Ax; x]ᵀ (Re Ψ ⊗ Q) [Ax; x] dt = x0ᵀ L x0`` with ``AᵀL + LA + M = 0`` and
     ``M = ψ11 AᵀQA + ψ12 (AᵀQ + QA) + ψ22 Q``.
+
+    Parameters
+    ----------
+    A : (n, n) array_like
+        Hurwitz.
+    x0 : (n,) array_like
+        Initial state (real).
+    band : Band
+    Q : (n, n) array_like
+        Symmetric positive definite.
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    UnstableError
+        If A is not Hurwitz (the integral diverges).
     """
-    A = as_matrix("A", A, square=True)
-    x0 = np.asarray(x0, dtype=float).reshape(-1)
-    if x0.size != A.shape[0]:
-        raise ValueError(f"x0 must have {A.shape[0]} entries, found {x0.size}")
+    A = _state_matrix(A, "the infinite-horizon FD-EEF")
+    x0 = as_vector("x0", x0, A.shape[0])
     Q = check_weight(Q, A.shape[0])
-    if np.any(np.linalg.eigvals(A).real >= 0):
-        raise ValueError("A must be Hurwitz for the infinite-horizon FD-EEF to exist")
+    check_type("band", band, Band)
     L = solve_continuous_lyapunov(A.T, -_psi_matrix(A, band, Q))
     return float(x0 @ L @ x0)
 
@@ -222,9 +254,24 @@ def fdeef_parseval_autonomous(A, x0, band, Q):
     With ``X(jω) = (jωI − A)⁻¹ x0`` the transform of ``ẋ`` on [0, ∞) is ``jωX − x0 = AX`` (the
     initial value enters), so ``S = (1/2π) ∫ [AX; X]* (Re Ψ ⊗ Q) [AX; X] dω``. Replacing ``AX`` by
     ``jωX``, as the proof of Proposition 1 does, is valid only for ``x(0) = 0``.
+
+    Parameters
+    ----------
+    A, x0, band, Q
+        As for :func:`fdeef_autonomous`.
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    UnstableError
+        If A is not Hurwitz: the transform of an unstable trajectory does not exist on the
+        imaginary axis, and the quadrature would return the value of the stable mirror image.
     """
-    A = as_matrix("A", A, square=True)
-    x0 = np.asarray(x0, dtype=float).reshape(-1)
+    A = _state_matrix(A, "the Parseval form of the FD-EEF")
+    x0 = as_vector("x0", x0, A.shape[0])
     Q = check_weight(Q, A.shape[0])
     n = A.shape[0]
     p = _band(band)
