@@ -110,15 +110,31 @@ def dominance_vs_rho(rhos, *, horizon=500.0, dt=2e-3):
             "fft": np.array(fft), "horizon": horizon, "dt": dt}
 
 
-def localized_dominance_piecewise(rho_t=0.2, *, window_length=60.0, hop=5.0, dt=2e-3):
-    """α(Ω_1, T_l) and α(Ω_3, T_l) along the piecewise disturbance of Fig. 7."""
+def localized_dominance_piecewise(rho_t=0.2, *, T=None, window_length=60.0, hop=5.0, dt=2e-3):
+    """α(Ω_1, T_l) and α(Ω_3, T_l) along the piecewise disturbance of paper Fig. 8 (eq. (58)).
+
+    Parameters
+    ----------
+    rho_t : float
+        Relative length of the LF segment.
+    T : float, optional
+        Length of the first HF segment in s (default the paper's T = 500); pass the T of the run
+        the result is drawn beside.
+    window_length, hop, dt : float
+        STFT window, hop and sampling step in s.
+
+    Returns
+    -------
+    dict
+        ``breaks``, ``rho_t``, ``T``, ``window_length`` and per band ``{"t", "alpha"}``.
+    """
     sim = paper_data("simulation")
-    T = sim["piecewise_T"]["value"]
+    T = sim["piecewise_T"]["value"] if T is None else T
     d = piecewise_disturbance(T, rho_t, sim["piecewise_rho_p_star"]["value"])
     t = np.arange(0.0, d.breaks[-1], dt)
     x = d(t)
     bands = paper_bands()
-    out = {"breaks": d.breaks, "rho_t": rho_t, "t_signal": t[::50], "d": x[::50]}
+    out = {"breaks": d.breaks, "rho_t": rho_t, "T": T}
     for kind in ("LF", "HF"):
         loc = localized_dominance(x, dt, bands[kind], window_length=window_length, hop=hop)
         out[kind] = {"t": loc.t, "alpha": loc.alpha}

@@ -8,8 +8,10 @@ import numpy as np
 
 from .plant import aircraft, paper_gains
 from .selectiveness import paper_modes
-from .signals import Sinusoids, hf_disturbance, lf_disturbance, piecewise_disturbance
-from .simulate import simulate, time_grid
+
+from ._validation import as_choice, as_positive
+from .signals import Sinusoids, paper_disturbance, piecewise_disturbance
+from .simulate import envelope, simulate, time_grid
 from .switching import DEFAULT_GAMMA_TOL, certify_q, design_q
 
 __all__ = [
@@ -66,7 +68,24 @@ def theorem1_table(gamma_tols=(1.0, 10.0, 100.0, 1000.0)):
 
 
 def run_controller(name, d, t, *, Q=None, law="previous", x0=None):
-    """Simulate one of :data:`CONTROLLERS` (FDSC with the given Q's, default the paper's)."""
+    """Simulate one of :data:`CONTROLLERS` (FDSC with the given Q's, default the paper's).
+
+    Parameters
+    ----------
+    name : {"PassC-EF", "PassC-LF", "PassC-HF", "FDSC"}
+    d : Sinusoids or Piecewise
+    t : (N,) array_like
+        Uniform grid.
+    Q : list of (2, 2) array_like, optional
+        Q's of the FDSC law (default the paper's).
+    law : {"previous", "candidate"}
+    x0 : (2,) array_like, optional
+
+    Returns
+    -------
+    SimResult
+    """
+    as_choice("name", name, CONTROLLERS)
     plant, gains = aircraft(), paper_gains()
     if name == "FDSC":
         pm = paper_modes()
@@ -86,26 +105,43 @@ def _l2_norm_curve(sim, every):
 
 
 def stationary_runs(kind, *, horizon=STATIONARY_HORIZON, dt=STATIONARY_DT, every=50,
-                    with_our_q=True):
-    """Figs. 3 (kind="LF") and 4/5 (kind="HF"): the four controllers under a stationary
+                    head=2.0, with_our_q=True):
+    """Paper Figs. 4 (kind="LF"), 5 and 6 (kind="HF"): the four controllers under a stationary
     disturbance, from rest.
+
+    Parameters
+    ----------
+    kind : {"LF", "HF"}
+        The paper's LF (eq. (56)) or HF (eq. (57)) disturbance.
+    horizon, dt : float
+        Run length and step in s.
+    every : int
+        Samples per bin of the decimated traces (min/max envelope, so nothing is aliased).
+    head : float
+        Length in s of the start of the run kept at full resolution.
+    with_our_q : bool
+        Add FDSC with our Q's ("FDSC (our Q)").
 
     Returns
     -------
     dict
-        ``t`` (decimated), ``z`` {controller: (k, 3)}, ``energy`` {controller: ∫zᵀz dt},
-        ``l2`` {controller: (k,) running L2-induced norm}, ``switches`` and ``share`` of FDSC,
-        ``horizon``, ``dt``; "FDSC (our Q)" is added with ``with_our_q``.
+        ``t`` (bin starts), ``z_lo``/``z_hi`` {controller: (k, 3) min/max per bin},
+        ``t_head``/``z_head`` (full resolution over ``[0, head]``), ``energy`` {controller:
+        ∫zᵀz dt}, ``l2`` {controller: (k,) running L2-induced norm at the bin starts},
+        ``switches`` and ``share`` of FDSC, ``horizon``, ``dt``.
     """
-    d = {"LF": lf_disturbance(), "HF": hf_disturbance()}[kind]
+    d = paper_disturbance(kind)
     t = time_grid(horizon, dt)
     names = list(CONTROLLERS) + (["FDSC (our Q)"] if with_our_q else [])
     Qours = our_q().Q if with_our_q else None
-    out = {"t": t[::every], "z": {}, "energy": {}, "l2": {}, "switches": {}, "share": {},
+    n_head = int(round(as_positive("head", head) / dt)) + 1
+    out = {"t": t[::every], "z_lo": {}, "z_hi": {}, "t_head": t[:n_head], "z_head": {},
+           "energy": {}, "l2": {}, "switches": {}, "share": {}, "every": every,
            "horizon": horizon, "dt": dt, "kind": kind, "input_energy": None}
     for name in names:
         sim = run_controller("FDSC", d, t, Q=Qours) if name == "FDSC (our Q)" else run_controller(name, d, t)
-        out["z"][name] = sim.z[::every]
+        _, out["z_lo"][name], out["z_hi"][name] = envelope(sim.t, sim.z, every)
+        out["z_head"][name] = sim.z[:n_head]
         out["energy"][name] = sim.energy()
         out["l2"][name] = _l2_norm_curve(sim, every)
         out["input_energy"] = sim.input_energy()
@@ -117,7 +153,7 @@ def stationary_runs(kind, *, horizon=STATIONARY_HORIZON, dt=STATIONARY_DT, every
 
 def step_halving(kind, *, horizon=100.0, dt=STATIONARY_DT):
     """Energies and switch counts with dt and dt/2 for every controller (the law is sampled)."""
-    d = {"LF": lf_disturbance(), "HF": hf_disturbance()}[kind]
+    d = paper_disturbance(kind)
     rows = []
     for name in CONTROLLERS:
         s1 = run_controller(name, d, time_grid(horizon, dt))
@@ -200,7 +236,7 @@ def lyapunov_jumps(result, *, kind="HF", horizon=20.0, dt=STATIONARY_DT, Q=None)
         ``ratios`` V(t⁺)/V(t⁻) at every switch, ``max_ratio``, ``n_switches``.
     """
     pm = paper_modes()
-    d = {"LF": lf_disturbance(), "HF": hf_disturbance()}[kind]
+    d = paper_disturbance(kind)
     t = time_grid(horizon, dt)
     sim = simulate(pm["modes"], d, t, law_bands=pm["bands"], law_Q=result.Q if Q is None else Q)
     k = np.flatnonzero(np.diff(sim.sigma)) + 1
@@ -213,9 +249,24 @@ def lyapunov_jumps(result, *, kind="HF", horizon=20.0, dt=STATIONARY_DT, Q=None)
 
 
 def window_ratios(run_sim, window):
-    """Energy ratio ∫zᵀz/∫d² over consecutive windows of a run (statement (2))."""
+    """Energy ratio ∫zᵀz/∫d² over consecutive windows of a run (Theorem 1 statement (2)).
+
+    Parameters
+    ----------
+    run_sim : SimResult
+    window : float
+        Window length in s (at least two steps, at most the run).
+
+    Returns
+    -------
+    (k,) ndarray
+    """
     t = run_sim.t
+    window = as_positive("window", window)
     n = round(window / (t[1] - t[0]))
+    if n < 2 or n > t.size - 1:
+        raise ValueError(f"window must span between 2 steps ({2 * (t[1] - t[0]):g} s) and the run "
+                         f"({t[-1] - t[0]:g} s), but found {window:g} s")
     zz = np.sum(run_sim.z**2, axis=1)
     out = []
     for k0 in range(0, t.size - n, n):

@@ -9,7 +9,7 @@ import numpy as np
 from .bands import Band
 from .energy import fdeef, instantaneous_power, steady_state_power
 from .plant import LTISystem, aircraft, paper_bands, paper_data, paper_gains
-from .signals import Sinusoids, hf_disturbance, lf_disturbance
+from .signals import Sinusoids, hf_disturbance, lf_disturbance, paper_disturbance
 from .simulate import simulate, time_grid
 
 __all__ = [
@@ -185,7 +185,7 @@ def epf_time_series(gain, disturbance, *, horizon=200.0, dt=1e-3, every=20):
     """
     pm = paper_modes()
     cl = aircraft().closed_loop(paper_gains()[gain])
-    d = {"LF": lf_disturbance(), "HF": hf_disturbance()}[disturbance]
+    d = paper_disturbance(disturbance)
     sim = simulate(cl, d, time_grid(horizon, dt))
     out = {"t": sim.t[::every], "P_t": {}, "P_a": {}, "gain": gain, "disturbance": disturbance}
     for kind, band, Q in zip(("LF", "HF"), pm["bands"], pm["Q"], strict=True):

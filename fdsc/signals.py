@@ -13,8 +13,9 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.signal import ShortTimeFFT, get_window
 
-from ._validation import as_finite_real, as_positive, frozen_array
+from ._validation import as_choice, as_finite_real, as_positive, as_vector, check_type
 from .bands import Band
+from .exceptions import DimensionError
 from .plant import paper_data
 
 __all__ = [
@@ -22,6 +23,8 @@ __all__ = [
     "Piecewise",
     "lf_disturbance",
     "hf_disturbance",
+    "paper_disturbance",
+    "PAPER_DISTURBANCES",
     "mixed_disturbance",
     "piecewise_disturbance",
     "dominance_degree",
@@ -31,14 +34,19 @@ __all__ = [
 
 
 def _vector(name, value, size=None):
-    arr = np.atleast_1d(np.asarray(value, dtype=float))
-    if arr.ndim != 1:
-        raise ValueError(f"{name} must be 1-D, but found shape {arr.shape}")
-    if size is not None and arr.size != size:
-        raise ValueError(f"{name} must have {size} entries (one per sinusoid), found {arr.size}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must be finite")
-    return frozen_array(arr)
+    try:
+        return as_vector(name, value, size)
+    except DimensionError as exc:
+        if size is None:
+            raise
+        raise DimensionError(f"{exc} (one per sinusoid)") from None
+
+
+def _times(t):
+    """Finite real times of any shape (a scalar stays a scalar)."""
+    arr = np.asarray(t)
+    flat = as_vector("t", arr.reshape(-1))
+    return flat.reshape(arr.shape)
 
 
 @dataclass(frozen=True)
@@ -79,12 +87,12 @@ class Sinusoids:
 
     def __call__(self, t):
         """Values at times ``t`` (array_like, s)."""
-        t = np.asarray(t, dtype=float)
+        t = _times(t)
         return np.sin(np.multiply.outer(t, self.frequencies) + self.phases) @ self.amplitudes
 
     def derivative(self, t):
         """Time derivative at times ``t``."""
-        t = np.asarray(t, dtype=float)
+        t = _times(t)
         return (np.cos(np.multiply.outer(t, self.frequencies) + self.phases)
                 @ (self.amplitudes * self.frequencies))
 
@@ -113,8 +121,7 @@ class Sinusoids:
 
         Frequencies must be distinct for the mean powers to add.
         """
-        if not isinstance(band, Band):
-            raise TypeError(f"band must be an fdsc.Band, but found {type(band).__name__}")
+        check_type("band", band, Band)
         if np.unique(self.frequencies).size != self.frequencies.size:
             raise ValueError("dominance needs distinct frequencies; merge equal ones first")
         p = self._powers()
@@ -140,6 +147,8 @@ class Piecewise:
 
     def __post_init__(self):
         b = _vector("breaks", self.breaks)
+        if not all(isinstance(p, Sinusoids) for p in self.parts):
+            raise TypeError("parts must be a sequence of fdsc.signals.Sinusoids")
         if b.size != len(self.parts) + 1:
             raise ValueError(f"breaks must have len(parts) + 1 = {len(self.parts) + 1} entries, "
                              f"found {b.size}")
@@ -149,7 +158,8 @@ class Piecewise:
         object.__setattr__(self, "parts", tuple(self.parts))
 
     def __call__(self, t):
-        t = np.asarray(t, dtype=float)
+        """Values at times ``t`` (array_like, s); zero outside ``[breaks[0], breaks[-1])``."""
+        t = np.asarray(_times(t), dtype=float)
         out = np.zeros_like(t)
         for k, part in enumerate(self.parts):
             sel = (t >= self.breaks[k]) & (t < self.breaks[k + 1])
@@ -158,7 +168,7 @@ class Piecewise:
 
     def segment_of(self, t):
         """Index of the part active at each time (−1 outside)."""
-        t = np.asarray(t, dtype=float)
+        t = _times(t)
         k = np.searchsorted(self.breaks, t, side="right") - 1
         return np.where((k >= 0) & (k < len(self.parts)), k, -1)
 
@@ -176,6 +186,22 @@ def lf_disturbance():
 def hf_disturbance():
     """``d_h(t) = sin 100t + sin 200t + sin 300t`` (eq. d-h)."""
     return _paper_sinusoids("hf_disturbance")
+
+
+#: The paper's stationary disturbances: eq. (56) (LF) and eq. (57) (HF).
+PAPER_DISTURBANCES = ("LF", "HF")
+
+
+def paper_disturbance(kind):
+    """The paper's LF (eq. (56)) or HF (eq. (57)) disturbance by name.
+
+    Examples
+    --------
+    >>> paper_disturbance("HF").frequencies
+    array([100., 200., 300.])
+    """
+    as_choice("kind", kind, PAPER_DISTURBANCES)
+    return lf_disturbance() if kind == "LF" else hf_disturbance()
 
 
 def mixed_disturbance(rho_p):
@@ -208,11 +234,9 @@ def piecewise_disturbance(T, rho_t, rho_p_star):
 
 
 def _record(x, dt):
-    x = np.asarray(x, dtype=float)
-    if x.ndim != 1 or x.size < 8:
-        raise ValueError(f"x must be a 1-D record of at least 8 samples, found shape {x.shape}")
-    if not np.all(np.isfinite(x)):
-        raise ValueError("x must be finite")
+    x = as_vector("x", x, allow_scalar=False)
+    if x.size < 8:
+        raise ValueError(f"x must be a record of at least 8 samples, found {x.size}")
     return x, as_positive("dt", dt)
 
 

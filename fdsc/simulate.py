@@ -12,19 +12,30 @@ compiled numba kernel; :func:`_kernel_numpy` is the same method in plain Python/
 the tests and the benchmark.
 """
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
 from scipy.linalg import expm
 
-from ._validation import as_positive
+from ._validation import as_choice, as_count, as_matrix, as_positive, as_vector, check_type
 from .bands import Band
 from .energy import check_weight
+from .exceptions import MemoryLimitError, UnstableError, UnstableRunWarning
+from .frequency import check_no_pole_at
 from .plant import LTISystem
 from .signals import Piecewise, Sinusoids
 
-__all__ = ["SimResult", "particular", "simulate", "time_grid", "LAWS"]
+__all__ = ["SimResult", "particular", "simulate", "time_grid", "envelope", "estimate_memory",
+           "LAWS", "KERNELS", "DEFAULT_MAX_MEMORY"]
+
+#: Compiled kernel or its plain NumPy reference.
+KERNELS = ("numba", "numpy")
+#: Largest working memory (bytes) :func:`simulate` allocates unless told otherwise.
+DEFAULT_MAX_MEMORY = 4 * 2**30
+#: Grid uniformity: |t_k − (t_0 + k dt)| may not exceed this fraction of dt (plus rounding of t).
+GRID_RTOL = 1e-6
 
 #: How ẋ enters the switching law: "previous" (default: ẋ = A_σ(t⁻) x + B d, the measured
 #: derivative) or "candidate" (each candidate i is scored with its own ẋ = A_i x + B d).
@@ -83,10 +94,27 @@ class SimResult:
 def time_grid(horizon, dt):
     """Uniform grid ``0, dt, …, horizon``; ``horizon`` must be a multiple of ``dt``.
 
+    Parameters
+    ----------
+    horizon : float
+        End time in s (> 0).
+    dt : float
+        Step in s (> 0).
+
+    Returns
+    -------
+    (N,) ndarray
+        ``N = horizon / dt + 1`` points; :func:`simulate` accepts every grid made here.
+
     Raises
     ------
     ValueError
         If ``dt ≤ 0``, ``horizon ≤ 0`` or the horizon is not a multiple of dt.
+
+    Examples
+    --------
+    >>> time_grid(1.0, 0.25)
+    array([0.  , 0.25, 0.5 , 0.75, 1.  ])
     """
     horizon, dt = as_positive("horizon", horizon), as_positive("dt", dt)
     n = round(horizon / dt)
@@ -100,8 +128,28 @@ def particular(A, B, d, t):
 
     ``x_p(t) = Σ Im(X_k e^{j(ω_k t + φ_k)})`` with ``X_k = (jω_k I − A)⁻¹ B a_k``. Requires
     ``jω_k`` not to be an eigenvalue of A (A need not be Hurwitz).
+
+    Parameters
+    ----------
+    A : (n, n) array_like
+    B : (n, 1) array_like
+    d : Sinusoids
+    t : (N,) array_like
+        Times in s.
+
+    Returns
+    -------
+    x_p, xdot_p : (N, n) ndarray
+
+    Raises
+    ------
+    SingularFrequencyError
+        If a tone's ``jω_k`` is an eigenvalue of A (resonance: no bounded particular solution).
     """
-    (xp,), (xdp,) = _particular_many([np.asarray(A, float)], B, d, t, derivative=True)
+    A = as_matrix("A", A, square=True)
+    B = as_matrix("B", B, (A.shape[0], 1))
+    check_type("d", d, Sinusoids, "an fdsc.signals.Sinusoids")
+    (xp,), (xdp,) = _particular_many([A], B, d, as_vector("t", t), derivative=True)
     return xp, xdp
 
 
@@ -109,6 +157,8 @@ def _particular_many(As, B, d, t, derivative=False):
     """x_p (and ẋ_p) of several modes at once; cos and sin of each tone are computed once."""
     t = np.asarray(t, dtype=float)
     n = As[0].shape[0]
+    for m, A in enumerate(As):
+        check_no_pole_at(A, d.frequencies, what=f"the forced response of mode {m} to the disturbance")
     xps = [np.zeros((t.size, n)) for _ in As]
     xdps = [np.zeros((t.size, n)) for _ in As] if derivative else None
     b = np.asarray(B, dtype=float).reshape(-1)
@@ -238,8 +288,85 @@ def _kernel_numpy(Phi, left, right, A, B, d, W, x0, sigma0, candidate):
     return x, sigma
 
 
+def estimate_memory(n_steps, n_states, n_outputs, n_modes, n_tones=1):
+    """Bytes :func:`simulate` needs for a run of ``n_steps`` samples (peak working memory).
+
+    Counts the returned trajectories (x, ẋ, z, d, σ, t), the particular solutions at both ends
+    of every step for every mode, and the per-tone temporaries of their evaluation.
+
+    Parameters
+    ----------
+    n_steps, n_states, n_outputs, n_modes : int
+    n_tones : int, optional
+        Largest number of sinusoids in one segment of the disturbance.
+
+    Returns
+    -------
+    int
+
+    Examples
+    --------
+    >>> estimate_memory(10**7, 2, 3, 2) / 2**30 < 4
+    True
+    """
+    per_step = (2 * n_states + n_outputs + 3          # x, ẋ, z, d, σ, t
+                + 2 * n_modes * n_states              # particular solutions, left and right
+                + n_modes * n_states + 2              # one segment's x_p per mode, cos and sin
+                + n_states + n_outputs)               # per-mode products when assembling ẋ, z
+    return int(8 * per_step * n_steps) + int(8 * n_tones * n_steps)
+
+
+def _check_grid(t):
+    t = as_vector("t", t)
+    if t.size < 2:
+        raise ValueError("t must be a 1-D grid of at least 2 points")
+    dt = (t[-1] - t[0]) / (t.size - 1)
+    if not dt > 0:
+        raise ValueError("t must be increasing (dt > 0)")
+    dev = float(np.max(np.abs(t - (t[0] + dt * np.arange(t.size)))))
+    if dev > GRID_RTOL * dt + 16 * np.finfo(float).eps * float(np.max(np.abs(t))):
+        raise ValueError(f"t must be a uniform grid (use time_grid): a point deviates from "
+                         f"t_0 + k dt by {dev:.3g} s with dt = {dt:.6g} s")
+    return t, dt
+
+
+def envelope(t, y, every):
+    """Min/max of ``y`` over consecutive bins of ``every`` samples: a decimation that keeps
+    everything a plot at the coarse scale must show (no aliasing of fast oscillations).
+
+    Parameters
+    ----------
+    t : (N,) array_like
+        Sample times.
+    y : (N,) or (N, p) array_like
+        Samples.
+    every : int
+        Samples per bin (≥ 1). The last bin may be shorter.
+
+    Returns
+    -------
+    t_bin : (M,) ndarray
+        Start time of each bin.
+    lo, hi : (M,) or (M, p) ndarray
+        Smallest and largest sample of each bin.
+
+    Examples
+    --------
+    >>> t = np.arange(6.0); y = np.array([0.0, 2.0, -1.0, 5.0, 3.0, 3.0])
+    >>> envelope(t, y, 2)
+    (array([0., 2., 4.]), array([ 0., -1.,  3.]), array([2., 5., 3.]))
+    """
+    t = as_vector("t", t)
+    y = np.asarray(y, dtype=float)
+    if y.shape[:1] != t.shape:
+        raise ValueError(f"y must have {t.size} rows (one per time), found shape {y.shape}")
+    every = as_count("every", every)
+    starts = np.arange(0, t.size, every)
+    return t[starts], np.minimum.reduceat(y, starts, axis=0), np.maximum.reduceat(y, starts, axis=0)
+
+
 def simulate(modes, d, t, *, x0=None, law_bands=None, law_Q=None, law="previous", sigma0=0,
-             kernel="numba"):
+             kernel="numba", max_memory=DEFAULT_MAX_MEMORY):
     """Simulate an LTI (one mode) or switched (several modes) closed loop exactly on a grid.
 
     Parameters
@@ -251,7 +378,7 @@ def simulate(modes, d, t, *, x0=None, law_bands=None, law_Q=None, law="previous"
     t : (N,) array_like
         Uniform grid (see :func:`time_grid`).
     x0 : (n,) array_like, optional
-        Initial state (default 0).
+        Initial state (real, finite; default 0).
     law_bands : list of Band, optional
         Ω_i of the switching law (required for several modes).
     law_Q : list of (n, n) array_like, optional
@@ -261,6 +388,10 @@ def simulate(modes, d, t, *, x0=None, law_bands=None, law_Q=None, law="previous"
     sigma0 : int
         Mode assumed active before t = 0 (used for ẋ at t = 0).
     kernel : {"numba", "numpy"}
+        Compiled kernel or its plain NumPy reference.
+    max_memory : float, optional
+        Refuse runs whose estimated working memory (:func:`estimate_memory`) exceeds this many
+        bytes (default 4 GiB).
 
     Returns
     -------
@@ -270,21 +401,35 @@ def simulate(modes, d, t, *, x0=None, law_bands=None, law_Q=None, law="previous"
     ------
     ValueError
         On mismatched mode/law counts, a non-uniform grid, non-PD Q, unknown law or kernel.
+    SingularFrequencyError
+        If a disturbance tone sits at an eigenvalue of a mode (resonance).
+    MemoryLimitError
+        If the run would need more than ``max_memory`` bytes; nothing is allocated.
+    UnstableError
+        If the state overflows (the loop diverges) during the run.
+
+    Warns
+    -----
+    UnstableRunWarning
+        If a mode is not Hurwitz but the run stayed finite (its energies grow with the horizon).
     """
-    modes = [modes] if isinstance(modes, LTISystem) else list(modes)
-    if not modes or not all(isinstance(m, LTISystem) for m in modes):
+    modes = [modes] if isinstance(modes, LTISystem) else list(modes) if isinstance(
+        modes, list | tuple) else modes
+    if not isinstance(modes, list) or not modes or not all(isinstance(m, LTISystem) for m in modes):
         raise TypeError("modes must be an LTISystem or a non-empty list of LTISystem")
     n = modes[0].n_states
     B, D = modes[0].B, modes[0].D
-    for m in modes[1:]:
-        if m.A.shape != (n, n) or not np.array_equal(m.B, B) or m.C.shape != modes[0].C.shape:
-            raise ValueError("modes must share B, D and the state and output dimensions")
+    for k, m in enumerate(modes[1:], start=1):
+        if m.A.shape != (n, n) or not np.array_equal(m.B, B) or m.C.shape != modes[0].C.shape \
+                or not np.array_equal(m.D, D):
+            raise ValueError(f"modes must share B, D and the state and output dimensions; mode {k} "
+                             "differs from mode 0")
     if B.shape[1] != 1:
         raise ValueError(f"the disturbance must be scalar (B of shape (n, 1)), found {B.shape}")
-    if law not in LAWS:
-        raise ValueError(f"law must be one of {LAWS}, found {law!r}")
-    if kernel not in ("numba", "numpy"):
-        raise ValueError(f"kernel must be 'numba' or 'numpy', found {kernel!r}")
+    check_type("d", d, Sinusoids | Piecewise, "an fdsc.signals.Sinusoids or Piecewise")
+    as_choice("law", law, LAWS)
+    as_choice("kernel", kernel, KERNELS)
+    max_memory = as_positive("max_memory", max_memory)
     n_modes = len(modes)
     if n_modes > 1:
         if law_bands is None or law_Q is None or len(law_bands) != n_modes or len(law_Q) != n_modes:
@@ -295,25 +440,42 @@ def simulate(modes, d, t, *, x0=None, law_bands=None, law_Q=None, law="previous"
         W = _law_matrices([b.psi.real for b in law_bands], Qs)
     else:
         W = np.zeros((1, 2 * n, 2 * n))
-    if not 0 <= int(sigma0) < n_modes:
+    sigma0 = as_count("sigma0", sigma0, 0)
+    if sigma0 >= n_modes:
         raise ValueError(f"sigma0 must be a mode index in [0, {n_modes}), found {sigma0}")
-    t = np.asarray(t, dtype=float)
-    if t.ndim != 1 or t.size < 2:
-        raise ValueError("t must be a 1-D grid of at least 2 points")
-    dt = t[1] - t[0]
-    if dt <= 0 or not np.allclose(np.diff(t), dt, rtol=1e-9, atol=0):
-        raise ValueError("t must be a uniform increasing grid (dt > 0)")
-    x0 = np.zeros(n) if x0 is None else np.asarray(x0, dtype=float).reshape(-1)
-    if x0.size != n:
-        raise ValueError(f"x0 must have {n} entries, found {x0.size}")
+    t, dt = _check_grid(t)
+    x0 = np.zeros(n) if x0 is None else np.array(as_vector("x0", x0, n))
+    n_tones = max(p.frequencies.size for p in (d.parts if isinstance(d, Piecewise) else (d,)))
+    need = estimate_memory(t.size, n, modes[0].n_outputs, n_modes, n_tones)
+    if need > max_memory:
+        raise MemoryLimitError(
+            f"simulate: {t.size} steps of {n_modes} mode(s) need about {need / 2**30:.2f} GiB, more "
+            f"than max_memory = {max_memory / 2**30:.2f} GiB; shorten the horizon, enlarge dt or "
+            "raise max_memory")
     dvals = d(t)
     Phi = np.array([expm(m.A * dt) for m in modes])
     A = np.array([m.A for m in modes])
     left, right = _particular_steps(list(A), B, d, t)
     run = _kernel_numba if kernel == "numba" else _kernel_numpy
-    x, sigma = run(Phi, left, right, A, np.ascontiguousarray(B[:, 0]), dvals, W, x0,
-                   int(sigma0), law == "candidate")
-    xdot = np.einsum("krc,kc->kr", A[sigma], x) + np.outer(dvals, B[:, 0])
-    Cs = np.array([m.C for m in modes])
-    z = np.einsum("krc,kc->kr", Cs[sigma], x) + np.outer(dvals, D[:, 0])
+    with np.errstate(over="ignore", invalid="ignore"):
+        x, sigma = run(Phi, left, right, A, np.ascontiguousarray(B[:, 0]), dvals, W, x0,
+                       int(sigma0), law == "candidate")
+    finite = np.isfinite(x).all(axis=1)
+    if not finite.all():
+        k = int(np.argmin(finite))
+        raise UnstableError(f"simulate: the state overflowed at t = {t[k]:g} s (step {k}); the loop "
+                            "diverges and no finite energy summarizes it")
+    for i, m in enumerate(modes):
+        ev = np.linalg.eigvals(m.A)
+        if ev.real.max() >= 0 and np.any(sigma == i):
+            worst = ev[np.argmax(ev.real)]
+            warnings.warn(f"simulate: mode {i} is not Hurwitz (eigenvalue {worst:.6g}) and is "
+                          "active in this run; its energies grow with the horizon",
+                          UnstableRunWarning, stacklevel=2)
+    xdot = np.empty_like(x)
+    z = np.empty((t.size, modes[0].n_outputs))
+    for i, m in enumerate(modes):
+        sel = sigma == i
+        xdot[sel] = x[sel] @ m.A.T + np.outer(dvals[sel], B[:, 0])
+        z[sel] = x[sel] @ m.C.T + np.outer(dvals[sel], D[:, 0])
     return SimResult(t, x, xdot, z, dvals, sigma)
