@@ -1,4 +1,8 @@
-"""Command line: ``python -m fdsc reproduce --out DIR`` writes ``DIR/reproduction.json``."""
+"""Command line of fdsc.
+
+python -m fdsc reproduce --out DIR   recompute every artefact of the paper and write
+                                     DIR/reproduction.json (the reproduction record)
+"""
 
 import argparse
 import json
@@ -10,11 +14,29 @@ import numpy as np
 
 from .record import reproduction_record
 
-__all__ = ["main", "to_jsonable"]
+__all__ = ["main", "to_jsonable", "RECORD_DIGITS"]
+
+#: Significant digits of the floats written to the record (far beyond any printed number; the
+#: last digits of a solver's answer are rounding noise and would make two builds differ).
+RECORD_DIGITS = 10
 
 
 def to_jsonable(obj):
-    """Convert arrays, complex numbers and NumPy scalars to JSON-friendly values."""
+    """Convert arrays, complex numbers and NumPy scalars to JSON-friendly values.
+
+    Floats are rounded to :data:`RECORD_DIGITS` significant digits; non-finite floats become
+    the strings ``"inf"``, ``"-inf"``, ``"nan"``.
+
+    Parameters
+    ----------
+    obj : object
+        Nested dicts, lists, tuples, arrays and scalars.
+
+    Returns
+    -------
+    object
+        The same structure with JSON-serializable leaves.
+    """
     if isinstance(obj, dict):
         return {str(k): to_jsonable(v) for k, v in obj.items()}
     if isinstance(obj, list | tuple):
@@ -29,22 +51,46 @@ def to_jsonable(obj):
         return int(obj)
     if isinstance(obj, float | np.floating):
         x = float(obj)
-        return x if np.isfinite(x) else str(x)
+        return float(f"{x:.{RECORD_DIGITS}g}") if np.isfinite(x) else str(x)
     return obj
 
 
+def _writable_dir(path):
+    """Create ``path`` if needed and check that a file can be written there, before computing."""
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+        probe = path / ".fdsc-write-test"
+        probe.write_text("", encoding="utf-8")
+        probe.unlink()
+    except OSError as exc:
+        raise SystemExit(f"python -m fdsc reproduce: --out {path}: cannot write there "
+                         f"({exc.strerror or exc})") from None
+
+
 def main(argv=None):
-    """Entry point of ``python -m fdsc``."""
-    parser = argparse.ArgumentParser(prog="python -m fdsc", description=__doc__)
+    """Entry point of ``python -m fdsc``.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        Command-line arguments (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        Exit status (0 on success; a bad ``--out`` exits with a message before any computing).
+    """
+    parser = argparse.ArgumentParser(prog="python -m fdsc", description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
     rep = sub.add_parser("reproduce", help="recompute every artefact and write reproduction.json")
     rep.add_argument("--out", required=True, type=Path, help="output folder (created if missing)")
     args = parser.parse_args(argv)
     if args.command == "reproduce":
+        _writable_dir(args.out)
         t0 = time.perf_counter()
         record = reproduction_record()
         record["environment"]["elapsed_s"] = time.perf_counter() - t0
-        args.out.mkdir(parents=True, exist_ok=True)
         path = args.out / "reproduction.json"
         path.write_text(json.dumps(to_jsonable(record), indent=1) + "\n", encoding="utf-8")
         for e in record["entries"]:

@@ -22,7 +22,7 @@ from .exceptions import IterationLimitError, SingularFrequencyError
 from .plant import LTISystem
 
 __all__ = ["freqresp", "sigma_max", "BandPeak", "band_peak", "DEFAULT_GRID_POINTS",
-           "check_no_pole_at"]
+           "check_no_pole_at", "steady_state_gain"]
 
 #: Grid points per decade-spanning sweep before refinement.
 DEFAULT_GRID_POINTS = 4000
@@ -49,10 +49,10 @@ def check_no_pole_at(A, omega, what="G(jω)"):
 
     Examples
     --------
-    >>> check_no_pole_at(np.array([[0.0, 1.0], [-1.0, 0.0]]), [0.5, 1.0])
+    >>> check_no_pole_at(np.array([[0.0, 1.0], [-1.0, 0.0]]), [0.5, 1.0])  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    fdsc.exceptions.SingularFrequencyError: G(jω) is undefined at ω = 1 rad/s: A has the eigenvalue 1j on the imaginary axis
+    fdsc.exceptions.SingularFrequencyError: G(jω) is undefined at ω = 1 rad/s: A has the eigenvalue 1j ...
     """
     w = np.asarray(omega, dtype=float).reshape(-1)
     ev = np.linalg.eigvals(A) if A.size else np.zeros(0)
@@ -252,3 +252,47 @@ def _refine(sys, w, s, xtol, n_candidates=4):
         if val > best_s:
             best_w, best_s = math.exp(float(res.x)), val
     return best_w, best_s
+
+
+def steady_state_gain(sys, frequencies, amplitudes):
+    """Steady-state L2-induced ratio ``lim_T sqrt(∫₀ᵀ zᵀz / ∫₀ᵀ dᵀd)`` of a stable system driven
+    by a scalar sum of sinusoids with distinct positive frequencies.
+
+    Cross terms of distinct frequencies average out, so the ratio is
+    ``sqrt(Σ a_k² ‖G(jω_k)‖² / Σ a_k²)`` (G is a column: one disturbance input). It is the limit
+    that a running ratio from rest approaches as the transient of every pole decays.
+
+    Parameters
+    ----------
+    sys : LTISystem
+        Stable, with one input.
+    frequencies : (K,) array_like
+        Distinct ω_k > 0 in rad/s.
+    amplitudes : (K,) array_like
+        a_k.
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    UnstableError
+        If A is not Hurwitz (no steady state).
+
+    Examples
+    --------
+    >>> sys = LTISystem([[-1.0]], [[1.0]], [[1.0]], [[0.0]])
+    >>> round(steady_state_gain(sys, [1.0], [2.0]), 12)   # |1/(j + 1)| = 1/sqrt(2)
+    0.707106781187
+    """
+    _check_system(sys)
+    if sys.n_inputs != 1:
+        raise ValueError(f"sys must have one input, found {sys.n_inputs}")
+    w = as_vector("frequencies", frequencies)
+    a = as_vector("amplitudes", amplitudes, w.size)
+    if np.any(w <= 0) or np.unique(w).size != w.size:
+        raise ValueError("frequencies must be distinct and > 0 rad/s")
+    check_hurwitz("sys", sys.A, "a steady state")
+    G = freqresp(sys, w)[:, :, 0]
+    return float(np.sqrt(np.sum(a**2 * np.sum(np.abs(G) ** 2, axis=1)) / np.sum(a**2)))

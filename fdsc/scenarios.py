@@ -6,10 +6,9 @@ Plain-data functions called by the book and the reproduction record.
 
 import numpy as np
 
+from ._validation import as_choice, as_positive
 from .plant import aircraft, paper_gains
 from .selectiveness import paper_modes
-
-from ._validation import as_choice, as_positive
 from .signals import Sinusoids, paper_disturbance, piecewise_disturbance
 from .simulate import envelope, simulate, time_grid
 from .switching import DEFAULT_GAMMA_TOL, certify_q, design_q

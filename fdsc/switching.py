@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import cvxpy as cp
 import numpy as np
 
-from ._validation import as_positive
+from ._validation import as_count, as_positive, check_hurwitz
 from .bands import PHI, Band
 from .energy import check_weight
 from .exceptions import VerificationError
@@ -72,6 +72,15 @@ def _validate(modes, bands):
     if any(b.is_complex for b in bands):
         raise ValueError("bands: Theorem 1 is implemented for real Ψ (LF, HF, entire); the "
                          "switching law sees only Re Ψ of an MF range")
+    n = modes[0].n_states
+    for k, m in enumerate(modes):
+        if m.A.shape != (n, n) or not np.array_equal(m.B, modes[0].B) or not np.array_equal(
+                m.D, modes[0].D) or m.C.shape != modes[0].C.shape:
+            raise ValueError(f"modes must share B, D and the state and output dimensions; mode {k} "
+                             "differs from mode 0")
+        # (T1-1) mixes the law's Ψ terms into the Lyapunov inequality, so it can hold for a mode
+        # that is not Hurwitz; the γ's bound energy only if every mode is stable on its own
+        check_hurwitz(f"modes[{k}]", m.A, "Theorem 1 (an L2-gain certificate of the switched loop)")
     return modes, bands
 
 
@@ -167,13 +176,16 @@ def certify_q(modes, bands, Q, *, margin=DEFAULT_MARGIN):
 
     Raises
     ------
+    UnstableError
+        If a mode is not Hurwitz (named with its eigenvalue).
     InfeasibleError
         If (T1-1) or (T1-2) cannot hold for these Q's whatever the γ's.
     """
     modes, bands = _validate(modes, bands)
     n = modes[0].n_states
-    if len(Q) != len(modes):
-        raise ValueError(f"Q must list one matrix per mode ({len(modes)}), found {len(Q)}")
+    if not isinstance(Q, list | tuple) or len(Q) != len(modes):
+        raise ValueError(f"Q must list one matrix per mode ({len(modes)}), found "
+                         f"{len(Q) if isinstance(Q, list | tuple) else type(Q).__name__}")
     Q = [check_weight(q, n) for q in Q]
     margin = as_positive("margin", margin)
     # the LMIs are homogeneous in (P^s, P, Q, γ², CᵀC): solve with Q/s and C/√s so that the
@@ -203,11 +215,14 @@ def design_q(modes, bands, in_band, *, gamma_tol=DEFAULT_GAMMA_TOL, margin=DEFAU
 
     Raises
     ------
+    UnstableError
+        If a mode is not Hurwitz.
     InfeasibleError
         If no Q's satisfy Theorem 1 with this γ_tol.
     """
     modes, bands = _validate(modes, bands)
-    if not 0 <= int(in_band) < len(modes):
+    in_band = as_count("in_band", in_band, 0)
+    if in_band >= len(modes):
         raise ValueError(f"in_band must be a mode index in [0, {len(modes)}), found {in_band}")
     gamma_tol = as_positive("gamma_tol", gamma_tol)
     margin = as_positive("margin", margin)

@@ -66,10 +66,10 @@ def check_stabilizable(plant, *, rtol=PBH_RTOL):
     --------
     >>> p = Plant([[1.0, 0.0], [0.0, -1.0]], [[1.0], [1.0]], [[0.0], [1.0]], [[1.0, 1.0]],
     ...           [[0.0]], [[0.0]])
-    >>> check_stabilizable(p)
+    >>> check_stabilizable(p)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    fdsc.exceptions.InfeasibleError: plant: the eigenvalue 1 of A is not controllable from B2 (PBH test, smallest singular value of [A - lambda I, B2] = 0), so no state feedback stabilizes the loop (status: not solved (PBH test))
+    fdsc.exceptions.InfeasibleError: plant: the eigenvalue 1 of A is not controllable from B2 ...
     """
     check_type("plant", plant, Plant)
     rtol = as_positive("rtol", rtol)

@@ -5,7 +5,17 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from fdsc import Band, DimensionError, LTISystem, aircraft, band_peak, freqresp, paper_bands, paper_gains, sigma_max
+from fdsc import (
+    Band,
+    DimensionError,
+    LTISystem,
+    aircraft,
+    band_peak,
+    freqresp,
+    paper_bands,
+    paper_gains,
+    sigma_max,
+)
 
 
 def first_order(a=1.0):

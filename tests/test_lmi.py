@@ -55,7 +55,8 @@ def test_certify_above_and_below_the_peak():
     peak = band_peak(sys, band).gamma  # 1/sqrt(5)
     assert gkyp_certify(sys, band, 1.01 * peak).gamma == pytest.approx(1.01 * peak)
     # decided by the sweep before any solve: the answer cannot depend on the solver's rounding
-    with pytest.raises(InfeasibleError, match=r"no certificate exists, sigma_max\(G\(jw\)\) reaches 0\.447") as info:
+    with pytest.raises(InfeasibleError,
+                       match=r"no certificate exists, sigma_max\(G\(jw\)\) reaches 0\.447") as info:
         gkyp_certify(sys, band, 0.99 * peak)
     assert info.value.status == "not solved (sweep)" and info.value.solver_status is None
 

@@ -68,13 +68,15 @@ def test_localized_dominance_tracks_the_segments():
 @pytest.mark.parametrize(
     ("call", "match"),
     [
-        (lambda: Sinusoids([1, 2], [1.0]), r"frequencies: expected 2 entries but found 1 \(one per sinusoid\)"),
+        (lambda: Sinusoids([1, 2], [1.0]),
+         r"frequencies: expected 2 entries but found 1 \(one per sinusoid\)"),
         (lambda: Sinusoids([1.0], [-1.0]), "frequencies must be >= 0"),
         (lambda: Sinusoids([1.0, 1.0], [1.0, 1.0]).dominance(Band.lf(2.0)), "distinct frequencies"),
         (lambda: mixed_disturbance(-0.1), "rho_p must be >= 0"),
         (lambda: piecewise_disturbance(0.0, 0.2, 0.1), "T must be a positive"),
         (lambda: dominance_degree(np.ones(100), 0.0, Band.lf(1.0)), "dt must be a positive"),
-        (lambda: dominance_degree(np.ones((10, 2)), 0.1, Band.lf(1.0)), r"x must be a 1-D array, but found shape \(10, 2\)"),
+        (lambda: dominance_degree(np.ones((10, 2)), 0.1, Band.lf(1.0)),
+         r"x must be a 1-D array, but found shape \(10, 2\)"),
         (lambda: dominance_degree(np.zeros(100), 0.1, Band.lf(1.0)), "identically zero"),
         (lambda: localized_dominance(np.ones(100), 0.1, Band.lf(1.0), window_length=100.0),
          "window_length must span"),
