@@ -251,8 +251,12 @@ def plot_fdsc_diagram(ax=None):
     return ax
 
 
-def plot_outputs(data, component, ax=None, *, scale=None, names=None):
-    """One output of z over time for each controller (Figs. 3 and 4).
+def plot_outputs(data, component, ax=None, *, scale=None, names=None, head=False):
+    """One output of z over time for each controller (paper Figs. 4 and 5).
+
+    The whole run is drawn as the min/max envelope of each bin of the decimated record (a band
+    that holds every sample, so oscillations faster than the bins are not aliased into a false
+    slow wave); with ``head=True`` the start of the run is drawn sample by sample instead.
 
     Parameters
     ----------
@@ -260,21 +264,38 @@ def plot_outputs(data, component, ax=None, *, scale=None, names=None):
         Output of :func:`fdsc.scenarios.stationary_runs`.
     component : int
         0: 4q, 1: 2δ_E, 2: 2δ_PTV (the rows of z).
+    ax : matplotlib Axes, optional
     scale : dict, optional
         ``{controller: factor}`` applied before drawing (stated in the legend).
+    names : list of str, optional
+        Controllers to draw (default all).
+    head : bool, optional
+        Draw the full-resolution start of the run (``data["t_head"]``) instead of the envelope.
+
+    Returns
+    -------
+    matplotlib Axes
     """
     ax = _axes(ax)
     labels = ["$4q$ (pitch rate)", r"$2\delta_E$ (tail deflection)", r"$2\delta_{PTV}$ (nozzle deflection)"]
-    for name, z in data["z"].items():
+    for name in data["z_lo"]:
         if names is not None and name not in names:
             continue
         color, ls = CONTROLLER_STYLES.get(name, ("k", "-"))
         f = (scale or {}).get(name, 1.0)
         lab = name if f == 1.0 else f"{name} × {f:g}"
-        ax.plot(data["t"], f * z[:, component], color=color, ls=ls, lw=0.8, label=lab)
+        if head:
+            ax.plot(data["t_head"], f * data["z_head"][name][:, component], color=color, ls=ls,
+                    lw=0.9, label=lab)
+        else:
+            lo, hi = f * data["z_lo"][name][:, component], f * data["z_hi"][name][:, component]
+            ax.fill_between(data["t"], lo, hi, step="post", color=color, alpha=0.35, lw=0,
+                            label=f"{lab} (min–max per {data['every'] * data['dt'] * 1e3:g} ms)")
+            for edge in (lo, hi):  # edges keep a thin band visible where lo ≈ hi
+                ax.plot(data["t"], edge, color=color, ls=ls, lw=0.6, drawstyle="steps-post")
     ax.set_xlabel("$t$ [s]")
     ax.set_ylabel(f"$z_{component + 1}$ = {labels[component]} [-]")
-    ax.legend(fontsize=7, ncol=3)
+    ax.legend(fontsize=7, ncol=2)
     return ax
 
 
