@@ -300,11 +300,16 @@ def plot_outputs(data, component, ax=None, *, scale=None, names=None, head=False
 
 
 def plot_l2_curves(data, ax=None):
-    """Fig. 5: the running L2-induced norm sqrt(∫zᵀz / ∫d²) over time for each controller."""
+    """Paper Fig. 6: the running L2-induced norm sqrt(∫zᵀz / ∫d²) over time for each controller,
+    drawn as its min/max per bin of the decimated record (so its early oscillation is not aliased).
+    """
     ax = _axes(ax)
-    for name, v in data["l2"].items():
+    t = data["t_l2"]
+    for name in data["l2_lo"]:
         color, ls = CONTROLLER_STYLES.get(name, ("k", "-"))
-        ax.plot(data["t"], v, color=color, ls=ls, label=name)
+        lo, hi = data["l2_lo"][name], data["l2_hi"][name]
+        ax.fill_between(t, lo, hi, step="post", color=color, alpha=0.35, lw=0)
+        ax.plot(t, hi, color=color, ls=ls, lw=1.0, drawstyle="steps-post", label=name)
     ax.set_xlabel("$t$ [s]")
     ax.set_ylabel(r"$\sqrt{\int_0^t z^\top z / \int_0^t d^2}$ [-]")
     ax.set_yscale("log")

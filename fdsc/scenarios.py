@@ -94,13 +94,13 @@ def run_controller(name, d, t, *, Q=None, law="previous", x0=None):
     return simulate(plant.closed_loop(gains[key]), d, t, x0=x0)
 
 
-def _l2_norm_curve(sim, every):
-    """Running L2-induced norm sqrt(∫₀ᵗ zᵀz / ∫₀ᵗ d²) (trapezoid; the dt factors cancel)."""
+def _l2_norm_curve(sim):
+    """Running L2-induced norm sqrt(∫₀ᵗ zᵀz / ∫₀ᵗ d²) on the grid (trapezoid; dt cancels)."""
     zz = np.concatenate([[0.0], np.cumsum(0.5 * (np.sum(sim.z[1:] ** 2, 1) + np.sum(sim.z[:-1] ** 2, 1)))])
     dd = np.concatenate([[0.0], np.cumsum(0.5 * (sim.d[1:] ** 2 + sim.d[:-1] ** 2))])
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio = np.sqrt(np.where(dd > 0, zz / dd, np.nan))
-    return ratio[::every]
+    return ratio
 
 
 def stationary_runs(kind, *, horizon=STATIONARY_HORIZON, dt=STATIONARY_DT, every=50,
@@ -126,8 +126,10 @@ def stationary_runs(kind, *, horizon=STATIONARY_HORIZON, dt=STATIONARY_DT, every
     dict
         ``t`` (bin starts), ``z_lo``/``z_hi`` {controller: (k, 3) min/max per bin},
         ``t_head``/``z_head`` (full resolution over ``[0, head]``), ``energy`` {controller:
-        ∫zᵀz dt}, ``l2`` {controller: (k,) running L2-induced norm at the bin starts},
-        ``switches`` and ``share`` of FDSC, ``horizon``, ``dt``.
+        ∫zᵀz dt}, ``l2`` {controller: (k,) running L2-induced norm at the bin starts} and its
+        min/max per bin ``l2_lo``/``l2_hi`` at the times ``t_l2`` (the ratio is undefined at
+        t = 0), ``peak`` {controller: (3,) max |z_i| over the run}, ``switches`` and ``share``
+        of FDSC, ``horizon``, ``dt``.
     """
     d = paper_disturbance(kind)
     t = time_grid(horizon, dt)
@@ -135,14 +137,18 @@ def stationary_runs(kind, *, horizon=STATIONARY_HORIZON, dt=STATIONARY_DT, every
     Qours = our_q().Q if with_our_q else None
     n_head = int(round(as_positive("head", head) / dt)) + 1
     out = {"t": t[::every], "z_lo": {}, "z_hi": {}, "t_head": t[:n_head], "z_head": {},
-           "energy": {}, "l2": {}, "switches": {}, "share": {}, "every": every,
+           "energy": {}, "l2": {}, "l2_lo": {}, "l2_hi": {}, "switches": {}, "share": {},
+           "every": every, "peak": {},
            "horizon": horizon, "dt": dt, "kind": kind, "input_energy": None}
     for name in names:
         sim = run_controller("FDSC", d, t, Q=Qours) if name == "FDSC (our Q)" else run_controller(name, d, t)
         _, out["z_lo"][name], out["z_hi"][name] = envelope(sim.t, sim.z, every)
         out["z_head"][name] = sim.z[:n_head]
+        out["peak"][name] = np.abs(sim.z).max(axis=0)
         out["energy"][name] = sim.energy()
-        out["l2"][name] = _l2_norm_curve(sim, every)
+        l2 = _l2_norm_curve(sim)
+        out["l2"][name] = l2[::every]
+        out["t_l2"], out["l2_lo"][name], out["l2_hi"][name] = envelope(sim.t[1:], l2[1:], every)
         out["input_energy"] = sim.input_energy()
         if name.startswith("FDSC"):
             out["switches"][name] = int(sim.switch_times.size)
