@@ -26,6 +26,7 @@ __all__ = [
     "autonomous_stability",
     "lyapunov_jumps",
     "window_ratios",
+    "law_conflict",
 ]
 
 #: Controllers compared in Figs. 3-7 (the paper's names).
@@ -279,3 +280,42 @@ def window_ratios(run_sim, window):
         out.append(float(np.trapezoid(zz[sl], t[sl]) / np.trapezoid(run_sim.d[sl] ** 2, t[sl])))
     return np.array(out)
 
+
+
+def law_conflict(sim, modes, law_bands, law_Q):
+    """Where the printed law with the measured ẋ cannot settle, along a simulated run.
+
+    With ẋ = A_σ(t⁻) x + B d the score of every candidate depends on the mode active just before
+    t. At a sample, mode i "prefers" the mode with the best score computed with ẋ = A_i x + B d. The
+    law cannot settle where every mode prefers another (for two modes: mode 1 prefers mode 2 and
+    mode 2 prefers mode 1): whichever is active, the next sample switches. That set is a region of
+    the (x, d) space, not the surface where two scores are equal.
+
+    Parameters
+    ----------
+    sim : SimResult
+        A run of the switched loop.
+    modes : list of LTISystem
+    law_bands : list of Band
+    law_Q : list of (n, n) array_like
+
+    Returns
+    -------
+    dict
+        ``in_region`` (fraction of samples in the region), ``switches_in_region`` (fraction of
+        switches taken at a sample in the region), ``n_switches``.
+    """
+    n_modes = len(modes)
+    scores = np.empty((n_modes, n_modes, sim.t.size))  # [active i, candidate j, k]
+    for i, m in enumerate(modes):
+        xdot = sim.x @ m.A.T + np.outer(sim.d, m.B[:, 0])
+        v = np.hstack([xdot, sim.x])
+        for j, (b, Q) in enumerate(zip(law_bands, law_Q, strict=True)):
+            W = np.kron(b.psi.real, np.asarray(Q, dtype=float))
+            scores[i, j] = np.einsum("kr,rc,kc->k", v, W, v)
+    prefers = scores.argmax(axis=1)  # [active i, k]
+    region = np.all(prefers != np.arange(n_modes)[:, None], axis=0)
+    sw = np.flatnonzero(np.diff(sim.sigma)) + 1
+    return {"in_region": float(region.mean()),
+            "switches_in_region": float(region[sw].mean()) if sw.size else 0.0,
+            "n_switches": int(sw.size)}
