@@ -121,7 +121,7 @@ def psi_weights(omega=None):
 
 
 def dominance_vs_rho(rhos, *, horizon=500.0, dt=2e-3):
-    """α(Ω_3) of the mixed disturbance ``d_h + ρ_p d_l`` (Fig. 6): exact and by FFT.
+    """α(Ω_3) of the mixed disturbance ``d_h + ρ_p d_l`` (paper Fig. 7): exact and by FFT.
 
     Parameters
     ----------

@@ -181,7 +181,7 @@ def band_peak(sys, band, *, n_grid=DEFAULT_GRID_POINTS, xtol=1e-10):
 
     Notes
     -----
-    This is the a-posteriori quantity bounded in eq. (10) and certified by Lemma 1.
+    This is the a-posteriori quantity bounded in paper eq. (11) and certified by Lemma 1.
 
     Examples
     --------

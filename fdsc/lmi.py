@@ -355,7 +355,7 @@ def gkyp_gamma(sys, band, *, margin=DEFAULT_MARGIN):
 
     Notes
     -----
-    Lemma 1 of the paper, eq. (gKYP_LMI). The result equals the band peak of
+    Lemma 1 of the paper, paper eq. (7). The result equals the band peak of
     σ_max up to solver accuracy (the lemma is lossless).
 
     Examples

@@ -1,4 +1,4 @@
-"""Artefacts of the passive-controller section (Sec. VI, first part; Fig. 2; Remark 2).
+"""Artefacts of the passive-controller section (paper Sec. IV, first part; paper Fig. 3; paper Remark 4).
 
 Plain-data functions called by the book and by :func:`fdsc.experiments.reproduction_record`.
 """
@@ -71,7 +71,7 @@ def gain_comparison(results=None):
 
 
 def sigma_curves(gains, omega=None):
-    """σ_max(G(jω)) of the aircraft closed loop for each gain (the curves of Fig. 2)."""
+    """σ_max(G(jω)) of the aircraft closed loop for each gain (the curves of paper Fig. 3)."""
     omega = np.geomspace(1e-3, 1e4, 1200) if omega is None else np.asarray(omega, float)
     plant = aircraft()
     return {"omega": omega,
@@ -79,7 +79,7 @@ def sigma_curves(gains, omega=None):
 
 
 def gap_curves(K_in, candidates, omega=None):
-    """Remark 2's gap ``σ_max(G, K_in) − σ_max(G, K_out)`` for each candidate out-of-band gain."""
+    """paper Remark 3's gap ``σ_max(G, K_in) − σ_max(G, K_out)`` for each candidate out-of-band gain."""
     omega = np.geomspace(1e-3, 1e4, 1200) if omega is None else np.asarray(omega, float)
     plant = aircraft()
     s_in = sigma_max(plant.closed_loop(K_in), omega)

@@ -1,6 +1,6 @@
-"""Plants, closed loops and the aircraft benchmark of Sec. VI.
+"""Plants, closed loops and the aircraft benchmark of Sec. IV.
 
-The plant is eq. (8) of the paper::
+The plant is paper eq. (10)::
 
     dx/dt = A x + B1 d + B2 u,     z = C x + D1 d + D2 u,
 
@@ -187,7 +187,7 @@ def paper_data(name):
 
 
 def aircraft():
-    """The longitudinal aircraft model of Sec. VI (two states, two controls, one disturbance).
+    """The longitudinal aircraft model of Sec. IV (two states, two controls, one disturbance).
 
     Returns
     -------

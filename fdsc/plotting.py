@@ -148,7 +148,7 @@ def plot_hf_sigma_scan(rows, ax=None, *, reference=None):
 
 
 def plot_gap(data, ax=None, *, band_limits=()):
-    """Remark 2's gap function for each candidate out-of-band gain (semilog-x, zero marked)."""
+    """paper Remark 3's gap function for each candidate out-of-band gain (semilog-x, zero marked)."""
     ax = _axes(ax)
     for label, g in data["gap"].items():
         ax.semilogx(data["omega"], g, label=label)
@@ -219,7 +219,7 @@ def plot_prop1_cases(rows, ax=None):
 
 
 def plot_fdsc_diagram(ax=None):
-    """Fig. 1: the closed loop with FDSC, drawn as a block diagram (no data)."""
+    """Paper Fig. 1: the closed loop with FDSC, drawn as a block diagram (no data)."""
     from matplotlib.patches import FancyArrowPatch, FancyBboxPatch
 
     ax = _axes(ax, figsize=(9, 4.2))

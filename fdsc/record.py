@@ -12,11 +12,56 @@ from .scenarios import STATIONARY_DT, STATIONARY_HORIZON, our_q, stationary_runs
 from .selectiveness import prop1_cases, prop1_summary, table1_trends
 from .signals import paper_disturbance
 
-__all__ = ["reproduction_record", "environment", "VERDICTS", "FIGURE_IDS"]
+__all__ = ["reproduction_record", "environment", "VERDICTS", "FIGURE_IDS", "PAPER_FIGURES",
+           "figure_status"]
 
 #: The record's figure entries, named by content, with the number of the paper figure each
 #: reproduces (numbers of the compiled tex, whose Fig. 2 is the code-availability box).
 FIGURE_IDS = {"sigma_max": 3, "lf_outputs": 4, "hf_outputs": 5, "hf_l2": 6}
+
+#: Every figure of the paper (compiled numbering): what it shows and the chapter that redraws it
+#: (None: not redrawn yet).
+PAPER_FIGURES = {
+    1: ("the closed loop with FDSC (block diagram)", "switching_law"),
+    2: ("code and data availability box (no data)", None),
+    3: ("sigma_max of the closed loops with K_f1, K_f2, K_f3, K_e", "passive_controllers"),
+    4: ("q, delta_E, delta_PTV under the LF disturbance, four controllers", "stationary"),
+    5: ("the same under the HF disturbance", "stationary"),
+    6: ("L2-induced norm over time under the HF disturbance", "stationary"),
+    7: ("output energy over [0, 500] against rho_p (mixed disturbance)", None),
+    8: ("output energy over [0, 1000 + 500 rho_t] against rho_t (piecewise disturbance)", None),
+}
+
+
+def figure_status(record):
+    """One row per paper figure: number, content, chapter, record entry and status.
+
+    Parameters
+    ----------
+    record : dict
+        The reproduction record (its ``figures`` say which figures have data).
+
+    Returns
+    -------
+    list of dict
+        ``figure, shows, chapter, record_entry, status`` with status ``redrawn from recorded
+        data``, ``drawn (no data)``, ``nothing to reproduce`` or ``not reproduced yet``.
+    """
+    by_number = {v["paper_figure"]: k for k, v in record["figures"].items() if "paper_figure" in v}
+    rows = []
+    for num, (shows, chapter) in PAPER_FIGURES.items():
+        entry = by_number.get(num)
+        if entry is not None:
+            status = "redrawn from recorded data"
+        elif chapter is not None:
+            status = "drawn (no data)"
+        elif num == 2:
+            status = "nothing to reproduce"
+        else:
+            status = "not reproduced yet"
+        rows.append({"figure": f"paper Fig. {num}", "shows": shows, "chapter": chapter or "",
+                     "record_entry": entry or "", "status": status})
+    return rows
 
 
 def _by_gain_band(table, key):
@@ -65,7 +110,7 @@ def reproduction_record():
     worst_rel = max(abs(r["rel_diff"]) for r in table)
     ratios = ", ".join(f"{b['gain']} {b['paper']}/{b['peak']:.4f}" for b in bounds)
     entries = [
-        {"id": "sigma_peak", "source": "Sec. VI, bounds printed beside K_f1, K_f2, K_f3, K_e; Fig. 2",
+        {"id": "sigma_peak", "source": "Sec. IV, bounds printed beside K_f1, K_f2, K_f3, K_e; paper Fig. 3",
          "paper": _paper_bounds(), "recomputed": _by_gain_band(table, "peak"),
          "omega_peak": _by_gain_band(table, "omega_peak"),
          "verdict": _worst(per_gain.values()), "verdicts": per_gain,
@@ -100,7 +145,7 @@ def _passive_entries():
         band = row["band"]
         how = "H-infinity state-feedback LMI" if band == "EF" else f"{band} synthesis LMI"
         entries.append({
-            "id": row["name"], "source": f"Sec. VI, {row['name']}",
+            "id": row["name"], "source": f"Sec. IV, {row['name']}",
             "paper": row["paper_K"], "recomputed": row["ours_K"], "verdict": row["verdict"],
             "note": (f"{how} (derived in the passive-controller chapter"
                      + ("" if band == "EF" else f"; stability LMI with epsilon = "
@@ -116,7 +161,7 @@ def _passive_entries():
     for b in bound_candidates(results):
         primary_ok = b["primary_verdict"] in ("match", "close")
         entries.append({
-            "id": _BOUND_IDS[b["gain"]], "source": f"Sec. VI, bound printed beside {b['gain']}",
+            "id": _BOUND_IDS[b["gain"]], "source": f"Sec. IV, bound printed beside {b['gain']}",
             "paper": b["paper"], "recomputed": b["primary"] if primary_ok or b["verdict"] !=
             "match" else b["value"], "verdict": b["verdict"],
             "candidates": b["candidates"], "crossings_rad_s": b["crossings"],
@@ -129,7 +174,7 @@ def _passive_entries():
                         "Tried: " + ", ".join(b["candidates"]) + "."))})
     hb = hf_best()
     entries.append({
-        "id": "hf_best", "source": "Sec. VI, K_f3 and Fig. 2 (HF design)",
+        "id": "hf_best", "source": "Sec. IV, K_f3 and paper Fig. 3 (HF design)",
         "paper": {"K": paper_data("controllers")["K_f3"]["value"],
                   "in_band": hb["K_f3_in_band"], "out_of_band": hb["K_f3_out_of_band"]},
         "recomputed": {"K": hb["K"], "sigma": hb["sigma"], "gamma_lmi": hb["gamma_lmi"],
@@ -159,7 +204,7 @@ def _selectiveness_entries():
                   "random positive-definite Q's. Holds for every steady state with LF/HF ranges; "
                   "fails for MF as in-band range (for real signals the MF weight is negative at "
                   "every frequency) and for short windows that contain the transient.")},
-        {"id": "table1_checks", "source": "Sec. IV, Table I",
+        {"id": "table1_checks", "source": "Sec. III, Table I",
          "paper": {r["quantity"]: r["claimed"] for r in tt["rows"]},
          "recomputed": t1, "alpha": tt["alpha"],
          "verdict": _worst([r["verdict"] for r in tt["rows"]]),
@@ -186,7 +231,7 @@ def _switching_entries_and_figures():
     entries = []
     for k, name in enumerate(("Q_1", "Q_2")):
         entries.append({
-            "id": name, "source": f"Sec. VI, {name}", "paper": sw[name]["value"],
+            "id": name, "source": f"Sec. IV, {name}", "paper": sw[name]["value"],
             "recomputed": ours.Q[k], "verdict": "not reproducible",
             "note": ("the paper prints the Q's but not gamma_tol nor the Q's scale, which the "
                      "Remark 4 design needs (Q enters Theorem 1 only through differences); ours: "
@@ -195,7 +240,7 @@ def _switching_entries_and_figures():
                      f"{ours.gammas[1]:.4f} by driving Q_1 to the margin; the printed Q's certify "
                      f"only gamma = ({paper_row['gamma_1']:.4g}, {paper_row['gamma_2']:.4g}).")})
     entries.append({
-        "id": "thm1_gammas", "source": "Theorem 1, Remark 3 (gammas not printed)",
+        "id": "thm1_gammas", "source": "Theorem 1, paper Remark 4 (gammas not printed)",
         "paper": None,
         "recomputed": {"paper_Q": [paper_row["gamma_1"], paper_row["gamma_2"]],
                        "ours": {f"gamma_tol={r['gamma_tol']:g}": [r["gamma_1"], r["gamma_2"]]

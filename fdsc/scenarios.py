@@ -1,4 +1,4 @@
-"""Artefacts of Sec. IV and the first half of Sec. VI: Theorem 1 on the aircraft, the switching law
+"""Artefacts of Sec. III and the first half of Sec. IV: Theorem 1 on the aircraft, the switching law
 in action, and the stationary-disturbance runs of Figs. 3, 4 and 5.
 
 Plain-data functions called by the book and the reproduction record.
@@ -31,7 +31,7 @@ __all__ = [
 
 #: Controllers compared in Figs. 3-7 (the paper's names).
 CONTROLLERS = ("PassC-EF", "PassC-LF", "PassC-HF", "FDSC")
-#: Our choice for the horizon of Figs. 3-5 (not printed): 500 s, the horizon of Fig. 6.
+#: Our choice for the horizon of paper Figs. 4-6 (not printed): 500 s, the horizon of paper Fig. 7.
 STATIONARY_HORIZON = 500.0
 #: Our time step: 1 ms (0.3 rad per step at the fastest tone; the step is exact, the law is
 #: sampled and the energy integral is Simpson's rule with a relative error of order (ω dt)⁴/180).
@@ -39,13 +39,13 @@ STATIONARY_DT = 1e-3
 
 
 def our_q(gamma_tol=DEFAULT_GAMMA_TOL):
-    """Q_1, Q_2 from the Remark 3 design on the paper's modes (in-band mode: HF, index 1)."""
+    """Q_1, Q_2 from the paper Remark 4 design on the paper's modes (in-band mode: HF, index 1)."""
     pm = paper_modes()
     return design_q(pm["modes"], pm["bands"], 1, gamma_tol=gamma_tol)
 
 
 def theorem1_table(gamma_tols=(1.0, 10.0, 100.0, 1000.0)):
-    """γ's certified by Theorem 1 with the paper's Q's and with the Remark 3 design over γ_tol.
+    """γ's certified by Theorem 1 with the paper's Q's and with the paper Remark 4 design over γ_tol.
 
     Returns
     -------
@@ -61,7 +61,7 @@ def theorem1_table(gamma_tols=(1.0, 10.0, 100.0, 1000.0)):
                  "Q_2": paper.Q[1], "max_eig": max(paper.max_eigs.values())})
     for gt in gamma_tols:
         r = design_q(pm["modes"], pm["bands"], 1, gamma_tol=gt)
-        rows.append({"source": "Remark 3 design", "gamma_tol": gt, "gamma_1": r.gammas[0],
+        rows.append({"source": "paper Remark 4 design", "gamma_tol": gt, "gamma_1": r.gammas[0],
                      "gamma_2": r.gammas[1], "Q_1": r.Q[0], "Q_2": r.Q[1],
                      "max_eig": max(r.max_eigs.values())})
     return rows
@@ -172,7 +172,7 @@ def step_halving(kind, *, horizon=100.0, dt=STATIONARY_DT):
 
 
 def switching_statistics(*, T=100.0, rho_t=0.2, rho_p_star=0.1, dt=STATIONARY_DT, laws=None):
-    """σ(t) along the piecewise disturbance of Fig. 7 (shortened to T), for several law variants.
+    """σ(t) along the piecewise disturbance of paper Fig. 8 (shortened to T), for several law variants.
 
     Returns
     -------

@@ -25,7 +25,7 @@ __all__ = [
 
 
 def paper_modes():
-    """The two FDSC modes of Sec. VI: closed loops, bands and Q's.
+    """The two FDSC modes of Sec. IV: closed loops, bands and Q's.
 
     Returns
     -------

@@ -205,7 +205,7 @@ def paper_disturbance(kind):
 
 
 def mixed_disturbance(rho_p):
-    """``d = d_h + ρ_p d_l`` (Fig. 6).
+    """``d = d_h + ρ_p d_l`` (paper Fig. 7).
 
     Examples
     --------
@@ -219,7 +219,7 @@ def mixed_disturbance(rho_p):
 
 
 def piecewise_disturbance(T, rho_t, rho_p_star):
-    """The piecewise disturbance (eq. d-piece) of Fig. 7.
+    """The piecewise disturbance (paper eq. (58)) of paper Fig. 8.
 
     HF on ``[0, T)``, ``ρ*_p`` times LF on ``[T, T + ρ_t T)``, HF on
     ``[T + ρ_t T, 2T + ρ_t T)``.

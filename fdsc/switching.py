@@ -1,4 +1,4 @@
-"""Theorem 1: the LMIs (T1-1), (T1-2) for I modes, the Q design of Remark 3, certification of
+"""Theorem 1: the LMIs (T1-1), (T1-2) for I modes, the Q design of paper Remark 4, certification of
 given Q's.
 
 For closed-loop modes ``(A_i, B, C_i, D)`` with ranges Ω_i (matrices Ψ_i, real for LF/HF) and
@@ -26,7 +26,7 @@ from .plant import LTISystem
 
 __all__ = ["Theorem1Result", "theorem1_matrices", "certify_q", "design_q", "DEFAULT_GAMMA_TOL"]
 
-#: γ_tol of Remark 3 used by default (not printed in the paper; the book shows the sensitivity).
+#: γ_tol of paper Remark 4 used by default (not printed in the paper; the book shows the sensitivity).
 DEFAULT_GAMMA_TOL = 10.0
 
 
@@ -198,7 +198,7 @@ def certify_q(modes, bands, Q, *, margin=DEFAULT_MARGIN):
 
 
 def design_q(modes, bands, in_band, *, gamma_tol=DEFAULT_GAMMA_TOL, margin=DEFAULT_MARGIN):
-    """Remark 3: fix γ_j = γ_tol for every j ≠ in_band and minimize γ_in_band over the Q's.
+    """paper Remark 4: fix γ_j = γ_tol for every j ≠ in_band and minimize γ_in_band over the Q's.
 
     Parameters
     ----------
@@ -206,7 +206,7 @@ def design_q(modes, bands, in_band, *, gamma_tol=DEFAULT_GAMMA_TOL, margin=DEFAU
     in_band : int
         Index of the in-band mode i (0-based).
     gamma_tol : float
-        γ_tol of Remark 3 (> 0).
+        γ_tol of paper Remark 4 (> 0).
     margin : float, optional
 
     Returns
@@ -229,4 +229,4 @@ def design_q(modes, bands, in_band, *, gamma_tol=DEFAULT_GAMMA_TOL, margin=DEFAU
     Ps, P, Q, g, cons = _problem(modes, bands, margin)
     cons += [g[j] == gamma_tol**2 for j in range(len(modes)) if j != in_band]
     prob = cp.Problem(cp.Minimize(g[in_band]), cons)
-    return _result(modes, bands, Ps, P, Q, g, prob, f"Remark 3 design (gamma_tol={gamma_tol:g})")
+    return _result(modes, bands, Ps, P, Q, g, prob, f"paper Remark 4 design (gamma_tol={gamma_tol:g})")
