@@ -36,6 +36,8 @@ from fdsc.signals import Sinusoids, dominance_degree, paper_disturbance
 from fdsc.simulate import particular, simulate, time_grid
 from fdsc.switching import certify_q, design_q
 
+TWO_BANDS = [Band.lf(1.0), Band.hf(10.0)]
+OSC = LTISystem([[0.0, 1.0], [-1.0, 0.0]], [[0.0], [1.0]], [[1.0, 0.0]], [[0.0]])  # poles ±1j
 STABLE = LTISystem([[-1.0, 0.0], [0.0, -2.0]], [[1.0], [1.0]], [[1.0, 0.0]], [[0.0]])
 UNSTABLE = LTISystem([[1.0, 0.0], [0.0, -2.0]], [[1.0], [1.0]], [[1.0, 0.0]], [[0.0]])
 Q2 = np.eye(2)
@@ -72,9 +74,8 @@ CASES = {
     "boolean B2": (lambda: Plant([[-1.0]], [[1.0]], [[True]], [[1.0]], [[0.0]], [[0.0]]), ValueError,
                    r"B2 must be a numeric matrix, but found booleans"),
     # --- frequency sweeps: jω poles, stability of a gain --------------------------------------
-    "pole on jω inside the sweep": (lambda: sigma_max(LTISystem([[0.0, 1.0], [-1.0, 0.0]], [[0.0], [1.0]],
-                                                                [[1.0, 0.0]], [[0.0]]), [0.5, 1.0]),
-                                    SingularFrequencyError, r"undefined at ω = 1 rad/s"),
+    "pole on jω inside the sweep": (lambda: sigma_max(OSC, [0.5, 1.0]), SingularFrequencyError,
+                                    r"undefined at ω = 1 rad/s"),
     "band peak of an unstable loop": (lambda: band_peak(UNSTABLE, Band.lf(1.0)), UnstableError,
                                       r"sys is not stable: A has the eigenvalue 1 "),
     "band peak, n_grid not an integer": (lambda: band_peak(STABLE, Band.lf(1.0), n_grid=100.5), ValueError,
@@ -86,15 +87,15 @@ CASES = {
                                             r"eigenvalue 1 with real part >= 0"),
     "Lemma 1 margin zero": (lambda: gkyp_gamma(STABLE, Band.lf(1.0), margin=0.0), ValueError,
                             r"margin must be a positive finite number"),
-    "Theorem 1 with an unstable mode": (lambda: certify_q([STABLE, UNSTABLE], [Band.lf(1.0), Band.hf(10.0)],
-                                                          [Q2, Q2]), UnstableError, r"modes\[1\] is not stable"),
-    "Theorem 1, Q not a list": (lambda: certify_q([STABLE, STABLE], [Band.lf(1.0), Band.hf(10.0)], Q2),
+    "Theorem 1 with an unstable mode": (lambda: certify_q([STABLE, UNSTABLE], TWO_BANDS, [Q2, Q2]),
+                                        UnstableError, r"modes\[1\] is not stable"),
+    "Theorem 1, Q not a list": (lambda: certify_q([STABLE, STABLE], TWO_BANDS, Q2),
                                 ValueError, r"Q must list one matrix per mode \(2\), found ndarray"),
-    "Theorem 1, Q not positive definite": (lambda: certify_q([STABLE, STABLE], [Band.lf(1.0), Band.hf(10.0)],
-                                                             [Q2, -Q2]), ValueError, r"Q must be positive definite"),
-    "Remark 4 design, in_band out of range": (lambda: design_q([STABLE, STABLE], [Band.lf(1.0), Band.hf(10.0)], 2),
+    "Theorem 1, Q not positive definite": (lambda: certify_q([STABLE, STABLE], TWO_BANDS, [Q2, -Q2]),
+                                           ValueError, r"Q must be positive definite"),
+    "Remark 4 design, in_band out of range": (lambda: design_q([STABLE, STABLE], TWO_BANDS, 2),
                                               ValueError, r"in_band must be a mode index in \[0, 2\)"),
-    "Remark 4 design, in_band a float": (lambda: design_q([STABLE, STABLE], [Band.lf(1.0), Band.hf(10.0)], 0.5),
+    "Remark 4 design, in_band a float": (lambda: design_q([STABLE, STABLE], TWO_BANDS, 0.5),
                                          ValueError, r"in_band must be an integer"),
     # --- FD-EEF / FD-EPF ------------------------------------------------------------------------
     "NaN in the states": (lambda: instantaneous_power(np.full((5, 2), np.nan), X, Band.lf(1.0), Q2),
@@ -111,10 +112,12 @@ CASES = {
                                     DimensionError, r"x0: expected 2 entries but found 3"),
     "FD-EEF closed form, unstable A": (lambda: fdeef_autonomous(UNSTABLE.A, [1.0, 0.0], Band.lf(1.0), Q2),
                                        UnstableError, r"A is not stable"),
-    "FD-EEF by Parseval, unstable A": (lambda: fdeef_parseval_autonomous(UNSTABLE.A, [1.0, 0.0], Band.lf(1.0),
-                                                                         Q2), UnstableError, r"A is not stable"),
-    "steady state of an unstable loop": (lambda: steady_state_power(UNSTABLE.A, UNSTABLE.B, TONE, Band.lf(1.0),
-                                                                    Q2), UnstableError, r"a steady state needs"),
+    "FD-EEF by Parseval, unstable A": (
+        lambda: fdeef_parseval_autonomous(UNSTABLE.A, [1.0, 0.0], Band.lf(1.0), Q2),
+        UnstableError, r"A is not stable"),
+    "steady state of an unstable loop": (
+        lambda: steady_state_power(UNSTABLE.A, UNSTABLE.B, TONE, Band.lf(1.0), Q2),
+        UnstableError, r"a steady state needs"),
     "steady state, band not a Band": (lambda: steady_state_power(STABLE.A, STABLE.B, TONE, "LF", Q2),
                                       TypeError, r"band must be an fdsc.Band"),
     # --- signals --------------------------------------------------------------------------------
@@ -137,16 +140,16 @@ CASES = {
                        r"kernel must be one of \('numba', 'numpy'\)"),
     "unknown law": (lambda: simulate([STABLE, STABLE], TONE, T, law_bands=[Band.lf(1.0), Band.hf(1.0)],
                                      law_Q=[Q2, Q2], law="next"), ValueError, r"law must be one of"),
-    "tone at a closed-loop eigenvalue": (lambda: simulate(LTISystem([[0.0, 1.0], [-1.0, -0.0]], [[0.0], [1.0]],
-                                                                    [[1.0, 0.0]], [[0.0]]), TONE, T),
-                                         SingularFrequencyError, r"forced response of mode 0"),
+    "tone at a closed-loop eigenvalue": (lambda: simulate(OSC, TONE, T), SingularFrequencyError,
+                                         r"forced response of mode 0"),
     "particular solution at resonance": (lambda: particular([[0.0, 2.0], [-2.0, 0.0]], [[0.0], [1.0]],
                                                             Sinusoids([1.0], [2.0]), [0.0]),
                                          SingularFrequencyError, r"undefined at ω = 2 rad/s"),
     "run larger than max_memory": (lambda: simulate(STABLE, TONE, time_grid(1000.0, 1e-3), max_memory=1e6),
                                    MemoryLimitError, r"more than max_memory = 0\.00 GiB"),
     "diverging loop": (lambda: simulate(LTISystem([[50.0]], [[1.0]], [[1.0]], [[0.0]]), TONE,
-                                        time_grid(20.0, 0.01)), UnstableError, r"the state overflowed at t ="),
+                                        time_grid(20.0, 0.01)),
+                       UnstableError, r"the state overflowed at t ="),
     "sigma0 beyond the modes": (lambda: simulate(STABLE, TONE, T, sigma0=1), ValueError,
                                 r"sigma0 must be a mode index in \[0, 1\)"),
     # --- paper scenarios and CLI-level helpers --------------------------------------------------
