@@ -328,5 +328,6 @@ def plot_sigma_timeline(data, ax=None):
         ax.axvline(b, color="k", ls=":", lw=1)
     ax.set_yticks([k + 0.4 for k in range(len(variants))], [lab for lab, _ in variants], fontsize=8)
     ax.set_xlabel("$t$ [s]  (dotted: disturbance switches HF → LF → HF)")
-    ax.set_title("active mode: bar up = PassC-HF ($K_2$), down = PassC-LF ($K_1$)", fontsize=9)
+    ax.set_title(f"share of each {data['bin'] * 1e3:g} ms bin on PassC-HF ($K_2$): full bar = all "
+                 "of it, no bar = all on PassC-LF ($K_1$)", fontsize=9)
     return ax

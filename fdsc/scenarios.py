@@ -177,7 +177,8 @@ def switching_statistics(*, T=100.0, rho_t=0.2, rho_p_star=0.1, dt=STATIONARY_DT
     Returns
     -------
     dict
-        ``t``, ``d`` (decimated), ``breaks``, and per variant ``sigma`` (decimated), ``switches``,
+        ``t`` (bin starts), ``bin`` (bin length, s), ``breaks``, and per variant ``sigma`` (share
+        of each bin spent in the HF mode, so chattering is not aliased), ``switches``,
         ``share`` (fraction in the HF mode per disturbance segment), ``single_sample_dwell``
         (fraction of dwell intervals lasting one sample: the signature of chattering).
     """
@@ -188,7 +189,8 @@ def switching_statistics(*, T=100.0, rho_t=0.2, rho_p_star=0.1, dt=STATIONARY_DT
                     "paper Q, candidate ẋ": (pm["Q"], "candidate"),
                     "our Q, measured ẋ": (our_q().Q, "previous")}
     every = 20
-    out = {"t": t[::every], "d": d(t)[::every], "breaks": d.breaks, "variants": {}}
+    starts = np.arange(0, t.size, every)
+    out = {"t": t[starts], "breaks": d.breaks, "variants": {}, "bin": every * dt}
     for label, (Q, law) in laws.items():
         sim = simulate(pm["modes"], d, t, law_bands=pm["bands"], law_Q=Q, law=law)
         seg = d.segment_of(t)
@@ -196,7 +198,10 @@ def switching_statistics(*, T=100.0, rho_t=0.2, rho_p_star=0.1, dt=STATIONARY_DT
         sw = np.flatnonzero(np.diff(sim.sigma)) + 1
         dwell = np.diff(np.concatenate([[0], sw, [t.size - 1]]))
         out["variants"][label] = {
-            "sigma": sim.sigma[::every], "switches": int(sw.size), "share_hf": share,
+            # the share of each bin spent in mode 1: σ chatters at the sampling rate, so every
+            # n-th sample of σ would alias; the per-bin share holds every sample
+            "sigma": np.add.reduceat(sim.sigma, starts) / np.diff(np.append(starts, t.size)),
+            "switches": int(sw.size), "share_hf": share,
             "single_sample_dwell": float(np.mean(dwell <= 1)) if dwell.size else 0.0,
             "energy": sim.energy()}
     return out
