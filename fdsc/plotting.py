@@ -179,11 +179,15 @@ def plot_power_vs_alpha(data, ax=None):
 
 
 def plot_epf_series(data, ax=None):
-    """Instantaneous FD-EPF of both law terms (thin) and their running averages (thick)."""
+    """Instantaneous FD-EPF of both law terms (min–max band per bin) and their running averages
+    (thick)."""
     ax = _axes(ax)
     for kind, color in (("LF", BAND_COLORS["LF"]), ("HF", BAND_COLORS["HF"])):
-        ax.plot(data["t"], data["P_t"][kind], color=color, lw=0.4, alpha=0.5,
-                label=f"$P_t$, {kind} term")
+        ax.fill_between(data["t"], data["P_t_lo"][kind], data["P_t_hi"][kind], step="post",
+                        color=color, alpha=0.3, lw=0,
+                        label=f"$P_t$, {kind} term (min–max per {data['bin'] * 1e3:g} ms)")
+        for edge in (data["P_t_lo"][kind], data["P_t_hi"][kind]):  # a smooth P_t has a thin band
+            ax.plot(data["t"], edge, color=color, lw=0.4, alpha=0.6, drawstyle="steps-post")
         ax.plot(data["t"], data["P_a"][kind], color=color, lw=2, label=f"running $P_a$, {kind} term")
     ax.axhline(0, color="0.4", lw=0.8)
     ax.set_yscale("symlog", linthresh=1e-3)

@@ -10,7 +10,7 @@ from .bands import Band
 from .energy import fdeef, instantaneous_power, steady_state_power
 from .plant import LTISystem, aircraft, paper_bands, paper_data, paper_gains
 from .signals import Sinusoids, hf_disturbance, lf_disturbance, paper_disturbance
-from .simulate import simulate, time_grid
+from .simulate import envelope, simulate, time_grid
 
 __all__ = [
     "paper_modes",
@@ -181,17 +181,21 @@ def epf_time_series(gain, disturbance, *, horizon=200.0, dt=1e-3, every=20):
     Returns
     -------
     dict
-        ``t`` (decimated), ``P_t`` {"LF": ..., "HF": ...} and the running averages ``P_a``.
+        ``t`` (bin starts), ``P_t_lo``/``P_t_hi`` {"LF": ..., "HF": ...} (min/max of the
+        instantaneous FD-EPF per bin of ``bin`` s) and the running averages ``P_a``.
     """
     pm = paper_modes()
     cl = aircraft().closed_loop(paper_gains()[gain])
     d = paper_disturbance(disturbance)
     sim = simulate(cl, d, time_grid(horizon, dt))
-    out = {"t": sim.t[::every], "P_t": {}, "P_a": {}, "gain": gain, "disturbance": disturbance}
+    out = {"t": sim.t[::every], "P_t_lo": {}, "P_t_hi": {}, "P_a": {}, "gain": gain,
+           "disturbance": disturbance, "bin": every * dt}
     for kind, band, Q in zip(("LF", "HF"), pm["bands"], pm["Q"], strict=True):
         p = instantaneous_power(sim.x, sim.xdot, band, Q)
         run = np.concatenate([[p[0]], np.cumsum(0.5 * (p[1:] + p[:-1])) * dt / sim.t[1:]])
-        out["P_t"][kind] = p[::every]
+        # P_t oscillates at up to twice the fastest tone: keep its min/max per bin, not every
+        # n-th sample (which would alias); the running average P_a is smooth
+        _, out["P_t_lo"][kind], out["P_t_hi"][kind] = envelope(sim.t, p, every)
         out["P_a"][kind] = run[::every]
     return out
 
