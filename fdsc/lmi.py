@@ -245,9 +245,8 @@ def _state_transform(sys):
     return np.diag(scale), np.diag(1.0 / scale)
 
 
-def _normalize(sys, band):
+def _normalize(sys, band, peak):
     """Copy of ``sys`` in a well-conditioned basis with output scaled so the band peak is ≈ 1."""
-    peak = band_peak(sys, band).gamma
     s = peak if peak > 0 else 1.0
     # balance after scaling the output, so that B and C/s are of one size and the
     # states excited by a unit disturbance at the peak are O(1): the margin then
@@ -266,16 +265,16 @@ def _solve(sys, band, gamma, margin):
     check_type("band", band, Band)
     margin = as_positive("margin", margin)
     check_hurwitz("sys", sys.A, "Lemma 1 as an L2-gain certificate")
+    pk = band_peak(sys, band)
     if gamma is not None:
         # the lemma is lossless: a γ at or below the swept peak has no certificate. Deciding
         # this before the solver keeps the answer independent of how the solver rounds.
-        pk = band_peak(sys, band)
         if gamma <= pk.gamma:
             raise InfeasibleError(
                 f"Lemma 1 on the {band.label} band at gamma={gamma:g}: no certificate exists, "
                 f"sigma_max(G(jw)) reaches {pk.gamma:.6g} >= gamma at w = {pk.omega:.6g} rad/s",
                 "not solved (sweep)")
-    nsys, Tinv, s = _normalize(sys, band)
+    nsys, Tinv, s = _normalize(sys, band, pk.gamma)
     for k, factor in enumerate(MARGIN_RETRIES):
         try:
             return _solve_once(sys, nsys, Tinv, s, band, gamma, margin * factor)

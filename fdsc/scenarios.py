@@ -1,5 +1,5 @@
 """Artefacts of Sec. III and the first half of Sec. IV: Theorem 1 on the aircraft, the switching law
-in action, and the stationary-disturbance runs of Figs. 3, 4 and 5.
+in action, and the stationary-disturbance runs of paper Figs. 4, 5 and 6.
 
 Plain-data functions called by the book and the reproduction record.
 """
@@ -7,6 +7,7 @@ Plain-data functions called by the book and the reproduction record.
 import numpy as np
 
 from ._validation import as_choice, as_positive
+from .frequency import steady_state_gain
 from .plant import aircraft, paper_gains
 from .selectiveness import paper_modes
 from .signals import Sinusoids, paper_disturbance, piecewise_disturbance
@@ -15,6 +16,7 @@ from .switching import DEFAULT_GAMMA_TOL, certify_q, design_q
 
 __all__ = [
     "CONTROLLERS",
+    "CONTROLLER_GAINS",
     "STATIONARY_HORIZON",
     "STATIONARY_DT",
     "theorem1_table",
@@ -29,8 +31,10 @@ __all__ = [
     "law_conflict",
 ]
 
-#: Controllers compared in Figs. 3-7 (the paper's names).
+#: Controllers compared in paper Figs. 4-8 (the paper's names).
 CONTROLLERS = ("PassC-EF", "PassC-LF", "PassC-HF", "FDSC")
+#: The printed gain of each fixed-gain controller.
+CONTROLLER_GAINS = {"PassC-EF": "K_e", "PassC-LF": "K_f1", "PassC-HF": "K_f3"}
 #: Our choice for the horizon of paper Figs. 4-6 (not printed): 500 s, the horizon of paper Fig. 7.
 STATIONARY_HORIZON = 500.0
 #: Our time step: 1 ms (0.3 rad per step at the fastest tone; the step is exact, the law is
@@ -91,8 +95,7 @@ def run_controller(name, d, t, *, Q=None, law="previous", x0=None):
         pm = paper_modes()
         return simulate(pm["modes"], d, t, law_bands=pm["bands"], law_Q=pm["Q"] if Q is None else Q,
                         law=law, x0=x0)
-    key = {"PassC-EF": "K_e", "PassC-LF": "K_f1", "PassC-HF": "K_f3"}[name]
-    return simulate(plant.closed_loop(gains[key]), d, t, x0=x0)
+    return simulate(plant.closed_loop(gains[CONTROLLER_GAINS[name]]), d, t, x0=x0)
 
 
 def _l2_norm_curve(sim):
@@ -129,7 +132,8 @@ def stationary_runs(kind, *, horizon=STATIONARY_HORIZON, dt=STATIONARY_DT, every
         ``t_head``/``z_head`` (full resolution over ``[0, head]``), ``energy`` {controller:
         ∫zᵀz dt}, ``l2`` {controller: (k,) running L2-induced norm at the bin starts} and its
         min/max per bin ``l2_lo``/``l2_hi`` at the times ``t_l2`` (the ratio is undefined at
-        t = 0), ``peak`` {controller: (3,) max |z_i| over the run}, ``switches`` and ``share``
+        t = 0), ``l2_steady`` {fixed-gain controller: the limit of its running ratio, closed
+        form}, ``peak`` {controller: (3,) max |z_i| over the run}, ``switches`` and ``share``
         of FDSC, ``horizon``, ``dt``.
     """
     d = paper_disturbance(kind)
@@ -140,6 +144,8 @@ def stationary_runs(kind, *, horizon=STATIONARY_HORIZON, dt=STATIONARY_DT, every
     out = {"t": t[::every], "z_lo": {}, "z_hi": {}, "t_head": t[:n_head], "z_head": {},
            "energy": {}, "l2": {}, "l2_lo": {}, "l2_hi": {}, "switches": {}, "share": {},
            "every": every, "peak": {},
+           "l2_steady": {c: steady_state_gain(aircraft().closed_loop(paper_gains()[g]), d.frequencies,
+                                              d.amplitudes) for c, g in CONTROLLER_GAINS.items()},
            "horizon": horizon, "dt": dt, "kind": kind, "input_energy": None}
     for name in names:
         sim = run_controller("FDSC", d, t, Q=Qours) if name == "FDSC (our Q)" else run_controller(name, d, t)
