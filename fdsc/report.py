@@ -11,12 +11,14 @@ def fmt(value, spec=".4g"):
 
     Examples
     --------
-    >>> fmt(0.123456), fmt(float("inf")), fmt("LF")
-    ('0.1235', '∞', 'LF')
+    >>> fmt(0.123456), fmt(float("inf")), fmt(float("nan")), fmt("LF")
+    ('0.1235', '∞', '—', 'LF')
     """
     if isinstance(value, bool) or value is None:
         return str(value)
     if isinstance(value, int | float):
+        if math.isnan(value):
+            return "—"  # nothing to show (e.g. no closed form)
         if math.isinf(value):
             return "∞" if value > 0 else "−∞"
         return format(value, spec)
