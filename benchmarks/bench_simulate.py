@@ -18,10 +18,10 @@ import os
 import time
 
 import numpy as np
+from fdsc.selectiveness import paper_modes
 from scipy.integrate import solve_ivp
 
 from fdsc import LTISystem
-from fdsc.selectiveness import paper_modes
 from fdsc.signals import Sinusoids, mixed_disturbance
 from fdsc.simulate import _kernel_numba, _kernel_numpy, particular, simulate, time_grid
 

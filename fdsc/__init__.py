@@ -1,7 +1,24 @@
-"""fdsc: a reproducible companion to *Frequency-dependent Switching Control for
-Disturbance Attenuation of Linear Systems* (Zhang, Heiland, Benner, Du)."""
+"""fdsc: frequency-dependent switching control (FDSC) for disturbance attenuation of linear systems.
+
+A library for any plant and any frequency ranges, after Zhang, Heiland, Benner and Du,
+*Frequency-dependent Switching Control for Disturbance Attenuation of Linear Systems*: bands and
+Ψ, band peaks of σ_max, Lemma 1 (the generalized KYP lemma), band-limited and H∞ state-feedback
+synthesis, the FD-EEF/FD-EPF, Theorem 1 (certify and design the law's Q's), an exact simulator
+for switched loops, and the :class:`FDSC` design object. The paper's reproduction lives in the
+separate layer :mod:`fdsc.paper`, which this package never imports.
+"""
 
 from .bands import PHI, Band, band_from_spec
+from .design import FDSC
+from .energy import (
+    PowerSplit,
+    average_power,
+    fdeef,
+    fdeef_autonomous,
+    fdeef_parseval_autonomous,
+    instantaneous_power,
+    steady_state_power,
+)
 from .exceptions import (
     BandError,
     DimensionError,
@@ -15,16 +32,39 @@ from .exceptions import (
     UnstableRunWarning,
     VerificationError,
 )
-from .frequency import BandPeak, band_peak, freqresp, sigma_max
-from .plant import LTISystem, Plant, aircraft, paper_bands, paper_data, paper_gains
+from .frequency import BandPeak, band_peak, freqresp, sigma_max, steady_state_gain
+from .lmi import GKYPResult, gkyp_certify, gkyp_gamma
+from .plant import LTISystem, Plant, as_plant, as_system
+from .random_systems import random_hurwitz, random_plant, random_spd, random_system
+from .signals import LocalizedDominance, Piecewise, Sinusoids, dominance_degree, localized_dominance
+from .simulate import SimResult, envelope, simulate, time_grid
+from .switching import Theorem1Result, certify_q, design_q
+from .synthesis import SynthesisResult, optimize_gain, synthesize, synthesize_hinf
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"
 
 __all__ = [
+    # frequency ranges
     "PHI", "Band", "band_from_spec",
+    # systems
+    "LTISystem", "Plant", "as_system", "as_plant",
+    # frequency responses and Lemma 1
+    "BandPeak", "band_peak", "freqresp", "sigma_max", "steady_state_gain",
+    "GKYPResult", "gkyp_gamma", "gkyp_certify",
+    # synthesis
+    "SynthesisResult", "synthesize", "synthesize_hinf", "optimize_gain",
+    # FD-EEF / FD-EPF
+    "PowerSplit", "instantaneous_power", "fdeef", "average_power", "steady_state_power",
+    "fdeef_autonomous", "fdeef_parseval_autonomous",
+    # Theorem 1 and the FDSC design
+    "Theorem1Result", "certify_q", "design_q", "FDSC",
+    # signals and simulation
+    "Sinusoids", "Piecewise", "dominance_degree", "localized_dominance", "LocalizedDominance",
+    "SimResult", "simulate", "time_grid", "envelope",
+    # seeded random systems
+    "random_hurwitz", "random_system", "random_plant", "random_spd",
+    # exceptions
     "FdscError", "BandError", "DimensionError", "SolverError", "InfeasibleError",
     "VerificationError", "IterationLimitError", "UnstableError", "SingularFrequencyError",
     "MemoryLimitError", "UnstableRunWarning",
-    "BandPeak", "band_peak", "freqresp", "sigma_max",
-    "LTISystem", "Plant", "aircraft", "paper_bands", "paper_data", "paper_gains",
 ]

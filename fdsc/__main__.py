@@ -1,74 +1,30 @@
-"""Command line of fdsc.
+"""Command line of fdsc: ``python -m fdsc COMMAND ...``.
 
-python -m fdsc reproduce --out DIR   recompute every artefact of the paper and write
-                                     DIR/reproduction.json (the reproduction record)
+The library has no command of its own. Commands are found through the entry-point group
+``fdsc.commands`` (an installed package registers ``name = "module:function"``, the function
+taking the remaining arguments); the paper layer registers ``reproduce``. This keeps the
+library free of any import of the paper layer.
 """
 
-import argparse
-import json
 import sys
-import time
-from pathlib import Path
+from importlib.metadata import entry_points
 
-import numpy as np
-
-from .record import reproduction_record
-
-__all__ = ["main", "to_jsonable", "RECORD_DIGITS"]
-
-#: Significant digits of the floats written to the record (far beyond any printed number; the
-#: last digits of a solver's answer are rounding noise and would make two builds differ).
-RECORD_DIGITS = 10
+__all__ = ["main", "commands"]
 
 
-def to_jsonable(obj):
-    """Convert arrays, complex numbers and NumPy scalars to JSON-friendly values.
-
-    Floats are rounded to :data:`RECORD_DIGITS` significant digits; non-finite floats become
-    the strings ``"inf"``, ``"-inf"``, ``"nan"``.
-
-    Parameters
-    ----------
-    obj : object
-        Nested dicts, lists, tuples, arrays and scalars.
+def commands():
+    """The registered commands: ``{name: entry point}`` of the group ``fdsc.commands``.
 
     Returns
     -------
-    object
-        The same structure with JSON-serializable leaves.
+    dict
+        Entry points by command name, sorted by name.
     """
-    if isinstance(obj, dict):
-        return {str(k): to_jsonable(v) for k, v in obj.items()}
-    if isinstance(obj, list | tuple):
-        return [to_jsonable(v) for v in obj]
-    if isinstance(obj, np.ndarray):
-        return to_jsonable(obj.tolist())
-    if isinstance(obj, complex | np.complexfloating):
-        return {"re": float(obj.real), "im": float(obj.imag)}
-    if isinstance(obj, np.bool_):
-        return bool(obj)
-    if isinstance(obj, np.integer):
-        return int(obj)
-    if isinstance(obj, float | np.floating):
-        x = float(obj)
-        return float(f"{x:.{RECORD_DIGITS}g}") if np.isfinite(x) else str(x)
-    return obj
-
-
-def _writable_dir(path):
-    """Create ``path`` if needed and check that a file can be written there, before computing."""
-    try:
-        path.mkdir(parents=True, exist_ok=True)
-        probe = path / ".fdsc-write-test"
-        probe.write_text("", encoding="utf-8")
-        probe.unlink()
-    except OSError as exc:
-        raise SystemExit(f"python -m fdsc reproduce: --out {path}: cannot write there "
-                         f"({exc.strerror or exc})") from None
+    return {ep.name: ep for ep in sorted(entry_points(group="fdsc.commands"), key=lambda e: e.name)}
 
 
 def main(argv=None):
-    """Entry point of ``python -m fdsc``.
+    """Run ``python -m fdsc COMMAND [ARGS]``.
 
     Parameters
     ----------
@@ -78,25 +34,19 @@ def main(argv=None):
     Returns
     -------
     int
-        Exit status (0 on success; a bad ``--out`` exits with a message before any computing).
+        Exit status of the command; 2 for a missing or unknown command.
     """
-    parser = argparse.ArgumentParser(prog="python -m fdsc", description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    sub = parser.add_subparsers(dest="command", required=True)
-    rep = sub.add_parser("reproduce", help="recompute every artefact and write reproduction.json")
-    rep.add_argument("--out", required=True, type=Path, help="output folder (created if missing)")
-    args = parser.parse_args(argv)
-    if args.command == "reproduce":
-        _writable_dir(args.out)
-        t0 = time.perf_counter()
-        record = reproduction_record()
-        record["environment"]["elapsed_s"] = time.perf_counter() - t0
-        path = args.out / "reproduction.json"
-        path.write_text(json.dumps(to_jsonable(record), indent=1) + "\n", encoding="utf-8")
-        for e in record["entries"]:
-            print(f"{e['id']:<16} {e['verdict']}")
-        print(f"wrote {path} in {record['environment']['elapsed_s']:.1f} s")
-    return 0
+    argv = sys.argv[1:] if argv is None else list(argv)
+    found = commands()
+    if not argv or argv[0] in ("-h", "--help") or argv[0] not in found:
+        names = ", ".join(found) or "none (is fdsc installed with pip?)"
+        msg = f"usage: python -m fdsc COMMAND [ARGS]; commands: {names}"
+        if argv and argv[0] not in ("-h", "--help"):
+            print(f"python -m fdsc: unknown command {argv[0]!r}; {msg}", file=sys.stderr)
+            return 2
+        print(msg)
+        return 0 if argv else 2
+    return found[argv[0]].load()(argv[1:])
 
 
 if __name__ == "__main__":

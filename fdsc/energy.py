@@ -20,6 +20,7 @@ from scipy.linalg import solve_continuous_lyapunov
 from ._validation import as_matrix, as_vector, check_hurwitz, check_type
 from .bands import Band
 from .exceptions import DimensionError
+from .plant import as_system
 from .signals import Sinusoids
 
 __all__ = [
@@ -64,9 +65,10 @@ def _trajectory(x, xdot):
     return x, xdot
 
 
-def _state_matrix(A, what):
-    A = as_matrix("A", A, square=True)
-    check_hurwitz("A", A, what)
+def _state_matrix(sys, what):
+    """A of a system given in any form :func:`~fdsc.plant.as_system` accepts, checked Hurwitz."""
+    A = as_system(sys).A
+    check_hurwitz("sys", A, what)
     return A
 
 
@@ -161,7 +163,7 @@ class PowerSplit:
     per_component: np.ndarray
 
 
-def steady_state_power(A, B, d, band, Q):
+def steady_state_power(sys, d, band, Q):
     """Exact steady-state average FD-EPF of ``dx/dt = A x + B d`` for a sum of sinusoids.
 
     For ``d = Σ a_k sin(ω_k t + φ_k)`` with distinct ω_k and A Hurwitz, the steady state is
@@ -172,10 +174,9 @@ def steady_state_power(A, B, d, band, Q):
 
     Parameters
     ----------
-    A : (n, n) array_like
-        Hurwitz.
-    B : (n, 1) array_like
-        Input matrix of the scalar disturbance.
+    sys : LTISystem, control.StateSpace or (A, B, C, D)
+        The system ``dx/dt = A x + B d`` with A Hurwitz and one disturbance input (C and D
+        are not used).
     d : Sinusoids
     band : Band
     Q : (n, n) array_like
@@ -189,9 +190,11 @@ def steady_state_power(A, B, d, band, Q):
     UnstableError
         If A is not Hurwitz (no steady state exists).
     """
-    A = _state_matrix(A, "a steady state")
+    A = _state_matrix(sys, "a steady state")
     n = A.shape[0]
-    B = as_matrix("B", B, (n, 1))
+    B = as_system(sys).B
+    if B.shape[1] != 1:
+        raise DimensionError(f"sys must have one disturbance input, but B has shape {B.shape}")
     Q = check_weight(Q, n)
     check_type("d", d, Sinusoids, "an fdsc.signals.Sinusoids")
     check_type("band", band, Band)
@@ -215,7 +218,7 @@ def _psi_matrix(A, band, Q):
     return p[0, 0] * A.T @ Q @ A + p[0, 1] * (A.T @ Q + Q @ A) + p[1, 1] * Q
 
 
-def fdeef_autonomous(A, x0, band, Q):
+def fdeef_autonomous(sys, x0, band, Q):
     """Infinite-horizon FD-EEF of ``x = e^{At} x0`` in closed form (a Lyapunov equation).
 
     ``S = ∫₀^∞ [Ax; x]ᵀ (Re Ψ ⊗ Q) [Ax; x] dt = x0ᵀ L x0`` with ``AᵀL + LA + M = 0`` and
@@ -223,8 +226,9 @@ def fdeef_autonomous(A, x0, band, Q):
 
     Parameters
     ----------
-    A : (n, n) array_like
-        Hurwitz.
+    sys : LTISystem, control.StateSpace or (A, B, C, D)
+        The system whose free motion ``x = e^{At} x0`` is weighed (A Hurwitz; B, C, D are
+        not used).
     x0 : (n,) array_like
         Initial state (real).
     band : Band
@@ -240,7 +244,7 @@ def fdeef_autonomous(A, x0, band, Q):
     UnstableError
         If A is not Hurwitz (the integral diverges).
     """
-    A = _state_matrix(A, "the infinite-horizon FD-EEF")
+    A = _state_matrix(sys, "the infinite-horizon FD-EEF")
     x0 = as_vector("x0", x0, A.shape[0])
     Q = check_weight(Q, A.shape[0])
     check_type("band", band, Band)
@@ -248,7 +252,7 @@ def fdeef_autonomous(A, x0, band, Q):
     return float(x0 @ L @ x0)
 
 
-def fdeef_parseval_autonomous(A, x0, band, Q):
+def fdeef_parseval_autonomous(sys, x0, band, Q):
     """The same FD-EEF through Parseval's theorem, by quadrature over frequency.
 
     With ``X(jω) = (jωI − A)⁻¹ x0`` the transform of ``ẋ`` on [0, ∞) is ``jωX − x0 = AX`` (the
@@ -257,7 +261,7 @@ def fdeef_parseval_autonomous(A, x0, band, Q):
 
     Parameters
     ----------
-    A, x0, band, Q
+    sys, x0, band, Q
         As for :func:`fdeef_autonomous`.
 
     Returns
@@ -270,7 +274,7 @@ def fdeef_parseval_autonomous(A, x0, band, Q):
         If A is not Hurwitz: the transform of an unstable trajectory does not exist on the
         imaginary axis, and the quadrature would return the value of the stable mirror image.
     """
-    A = _state_matrix(A, "the Parseval form of the FD-EEF")
+    A = _state_matrix(sys, "the Parseval form of the FD-EEF")
     x0 = as_vector("x0", x0, A.shape[0])
     Q = check_weight(Q, A.shape[0])
     n = A.shape[0]

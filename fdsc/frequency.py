@@ -19,7 +19,7 @@ from scipy.optimize import minimize_scalar
 from ._validation import as_count, as_positive, as_vector, check_hurwitz, check_type
 from .bands import Band
 from .exceptions import IterationLimitError, SingularFrequencyError
-from .plant import LTISystem
+from .plant import as_system
 
 __all__ = ["freqresp", "sigma_max", "BandPeak", "band_peak", "DEFAULT_GRID_POINTS",
            "check_no_pole_at", "steady_state_gain"]
@@ -31,8 +31,6 @@ _MAX_EXTENSIONS = 60
 POLE_RTOL = 1e-10
 
 
-def _check_system(sys):
-    check_type("sys", sys, LTISystem)
 
 
 def check_no_pole_at(A, omega, what="G(jω)"):
@@ -87,11 +85,12 @@ def freqresp(sys, omega):
 
     Examples
     --------
+    >>> from fdsc import LTISystem
     >>> sys = LTISystem([[-1.0]], [[1.0]], [[1.0]], [[0.0]])
     >>> complex(freqresp(sys, [1.0])[0, 0, 0])
     (0.5-0.5j)
     """
-    _check_system(sys)
+    sys = as_system(sys)
     w = as_vector("omega", omega)
     check_no_pole_at(sys.A, w)
     n = sys.n_states
@@ -115,6 +114,7 @@ def sigma_max(sys, omega):
 
     Examples
     --------
+    >>> from fdsc import LTISystem
     >>> sys = LTISystem([[-1.0]], [[1.0]], [[1.0]], [[0.0]])
     >>> round(float(sigma_max(sys, [0.0])[0]), 12)
     1.0
@@ -185,12 +185,13 @@ def band_peak(sys, band, *, n_grid=DEFAULT_GRID_POINTS, xtol=1e-10):
 
     Examples
     --------
+    >>> from fdsc import LTISystem
     >>> sys = LTISystem([[-1.0]], [[1.0]], [[1.0]], [[0.0]])
     >>> pk = band_peak(sys, Band.hf(10.0))
     >>> round(pk.gamma, 6), pk.omega   # 1/|j10 + 1| = 1/sqrt(101), at the band edge
     (0.099504, 10.0)
     """
-    _check_system(sys)
+    sys = as_system(sys)
     check_type("band", band, Band)
     n_grid = as_count("n_grid", n_grid, 10)
     xtol = as_positive("xtol", xtol)
@@ -282,11 +283,12 @@ def steady_state_gain(sys, frequencies, amplitudes):
 
     Examples
     --------
+    >>> from fdsc import LTISystem
     >>> sys = LTISystem([[-1.0]], [[1.0]], [[1.0]], [[0.0]])
     >>> round(steady_state_gain(sys, [1.0], [2.0]), 12)   # |1/(j + 1)| = 1/sqrt(2)
     0.707106781187
     """
-    _check_system(sys)
+    sys = as_system(sys)
     if sys.n_inputs != 1:
         raise ValueError(f"sys must have one input, found {sys.n_inputs}")
     w = as_vector("frequencies", frequencies)

@@ -30,7 +30,7 @@ from ._validation import as_positive, check_hurwitz, check_type
 from .bands import Band
 from .exceptions import InfeasibleError, SolverError, VerificationError
 from .frequency import band_peak
-from .plant import LTISystem
+from .plant import LTISystem, as_system
 
 __all__ = [
     "GKYPResult",
@@ -261,7 +261,7 @@ MARGIN_RETRIES = (1.0, 10.0, 100.0)
 
 
 def _solve(sys, band, gamma, margin):
-    check_type("sys", sys, LTISystem)
+    sys = as_system(sys)
     check_type("band", band, Band)
     margin = as_positive("margin", margin)
     check_hurwitz("sys", sys.A, "Lemma 1 as an L2-gain certificate")

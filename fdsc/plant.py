@@ -1,4 +1,4 @@
-"""Plants, closed loops and the aircraft benchmark of Sec. IV.
+"""Systems: the open-loop plant, closed loops, and the one boundary that converts user input to them.
 
 The plant is paper eq. (10)::
 
@@ -9,17 +9,13 @@ and state feedback ``u = K x`` gives the closed loop
 ``C + B2 K``; the dimensions force ``C + D2 K``.)
 """
 
-import json
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
-from ._validation import as_matrix
-from .bands import band_from_spec
+from ._validation import as_count, as_matrix
 
-__all__ = ["LTISystem", "Plant", "aircraft", "paper_data", "paper_gains", "paper_bands",
-           "data_dir"]
+__all__ = ["LTISystem", "Plant", "as_system", "as_plant"]
 
 
 @dataclass(frozen=True)
@@ -98,10 +94,11 @@ class Plant:
 
     Examples
     --------
-    >>> p = aircraft()
-    >>> cl = p.closed_loop(np.zeros((2, 2)))
-    >>> cl.A.shape, cl.C.shape
-    ((2, 2), (3, 2))
+    >>> p = Plant([[0.0, 1.0], [-2.0, -0.5]], [[0.0], [1.0]], [[0.0], [1.0]],
+    ...           [[1.0, 0.0], [0.0, 0.0]], [[0.0], [0.0]], [[0.0], [1.0]])
+    >>> cl = p.closed_loop([[-1.0, -1.0]])
+    >>> cl.A.tolist(), cl.C.shape
+    ([[0.0, 1.0], [-3.0, -1.5]], (2, 2))
     """
 
     A: np.ndarray
@@ -155,62 +152,124 @@ class Plant:
         return LTISystem(self.A + self.B2 @ K, self.B1, self.C + self.D2 @ K, self.D1)
 
 
-def data_dir():
-    """Folder ``data/`` of the repository (beside the ``fdsc`` package).
+def _statespace_matrices(sys, name):
+    """(A, B, C, D) of a continuous-time python-control StateSpace, or None if ``sys`` is not one."""
+    try:
+        import control
+    except ImportError:  # python-control is optional for the library
+        return None
+    if not isinstance(sys, control.StateSpace):
+        if isinstance(sys, control.InputOutputSystem):
+            raise TypeError(f"{name} must be a python-control StateSpace (convert with control.ss), "
+                            f"but found {type(sys).__name__}")
+        return None
+    if not sys.isctime(strict=True):
+        raise ValueError(f"{name} must be a continuous-time system (dt = 0), but found dt={sys.dt}")
+    return sys.A, sys.B, sys.C, sys.D
+
+
+def as_system(sys, name="sys"):
+    """Convert a system to :class:`LTISystem`: the one boundary for every function that takes one.
+
+    Parameters
+    ----------
+    sys : LTISystem, control.StateSpace or tuple
+        An :class:`LTISystem` (returned as is), a continuous-time python-control ``StateSpace``,
+        or a tuple ``(A, B, C, D)`` of array_like.
+    name : str, optional
+        Name of the argument, for error messages.
+
+    Returns
+    -------
+    LTISystem
 
     Raises
     ------
-    FileNotFoundError
-        If fdsc is not run from a checkout of the repository.
-    """
-    path = Path(__file__).resolve().parent.parent / "data"
-    if not path.is_dir():
-        raise FileNotFoundError(f"fdsc expects the paper's data in {path}; install fdsc from a "
-                                "checkout of the repository (pip install -e .)")
-    return path
-
-
-def paper_data(name):
-    """Load ``data/<name>.json`` (a dict of ``{"value": ..., "source": ...}`` entries).
+    TypeError
+        If ``sys`` is none of the accepted types (a ``Plant`` must be closed first).
+    ValueError
+        If a python-control system is discrete-time.
+    DimensionError
+        If the matrices do not fit together.
 
     Examples
     --------
-    >>> paper_data("controllers")["K_f1"]["bound"]
-    0.3443
+    >>> import control
+    >>> as_system(control.ss([[-1.0]], [[1.0]], [[2.0]], [[0.0]])).C
+    array([[2.]])
+    >>> as_system(([[-1.0]], [[1.0]], [[2.0]], [[0.0]])).n_states
+    1
     """
-    path = data_dir() / f"{name}.json"
-    if not path.is_file():
-        available = sorted(p.stem for p in data_dir().glob("*.json"))
-        raise FileNotFoundError(f"name: no data file {path.name}; available: {available}")
-    with path.open(encoding="utf-8") as fh:
-        return json.load(fh)
+    if isinstance(sys, LTISystem):
+        return sys
+    if isinstance(sys, Plant):
+        raise TypeError(f"{name} must be a closed loop (LTISystem), but found a Plant; close it "
+                        "with plant.closed_loop(K)")
+    abcd = _statespace_matrices(sys, name)
+    if abcd is None and isinstance(sys, tuple | list) and len(sys) == 4:
+        abcd = sys
+    if abcd is None:
+        raise TypeError(f"{name} must be an fdsc.LTISystem, a python-control StateSpace or a tuple "
+                        f"(A, B, C, D), but found {type(sys).__name__}")
+    return LTISystem(*abcd)
 
 
-def aircraft():
-    """The longitudinal aircraft model of Sec. IV (two states, two controls, one disturbance).
+def as_plant(plant, name="plant", *, n_disturbances=None):
+    """Convert an open-loop plant to :class:`Plant`: the boundary for synthesis and FDSC designs.
+
+    Parameters
+    ----------
+    plant : Plant, control.StateSpace or tuple
+        A :class:`Plant` (returned as is), a tuple ``(A, B1, B2, C, D1, D2)`` of array_like, or a
+        continuous-time python-control ``StateSpace`` whose inputs are ``[d; u]``: the first
+        ``n_disturbances`` inputs are disturbances, the others controls.
+    name : str, optional
+        Name of the argument, for error messages.
+    n_disturbances : int, optional
+        Number of disturbance inputs of a ``StateSpace`` plant (required for one, ignored
+        otherwise: a StateSpace does not say which inputs are controls).
 
     Returns
     -------
     Plant
+
+    Raises
+    ------
+    TypeError
+        If ``plant`` is none of the accepted types, or a StateSpace comes without
+        ``n_disturbances``.
+    ValueError
+        If ``n_disturbances`` leaves no disturbance or no control input.
+
+    Examples
+    --------
+    >>> import control
+    >>> ss = control.ss([[0.0, 1.0], [-2.0, -0.5]], [[0.0, 0.0], [1.0, 1.0]],
+    ...                 [[1.0, 0.0], [0.0, 0.0]], [[0.0, 0.0], [0.0, 1.0]])
+    >>> p = as_plant(ss, n_disturbances=1)
+    >>> p.B1.shape, p.B2.shape, p.D2.ravel().tolist()
+    ((2, 1), (2, 1), [0.0, 1.0])
     """
-    d = paper_data("aircraft")
-    names = {k: d[k]["value"] for k in ("state_names", "input_names", "output_names")}
-    return Plant(*(np.array(d[k]["value"]) for k in ("A", "B1", "B2", "C", "D1", "D2")),
-                 names=names)
-
-
-def paper_gains():
-    """The printed gains ``{"K_f1": K, "K_f2": K, "K_f3": K, "K_e": K}`` (arrays (2, 2))."""
-    d = paper_data("controllers")
-    return {k: np.array(v["value"]) for k, v in d.items() if k.startswith("K_")}
-
-
-def paper_bands():
-    """The paper's bands ``{"LF": Ω_1, "MF": Ω_2, "HF": Ω_3, "EF": Ω_e}`` as :class:`Band`."""
-    specs = paper_data("aircraft")["bands"]["value"]
-    bands = {}
-    for spec in specs.values():
-        b = band_from_spec(spec)
-        bands[b.kind] = b
-    bands["EF"] = band_from_spec({"kind": "EF"})
-    return bands
+    if isinstance(plant, Plant):
+        return plant
+    if isinstance(plant, LTISystem):
+        raise TypeError(f"{name} must be an open-loop plant with separate disturbance and control "
+                        "inputs (Plant, a StateSpace with n_disturbances, or (A, B1, B2, C, D1, D2)), "
+                        "but found an LTISystem")
+    abcd = _statespace_matrices(plant, name)
+    if abcd is not None:
+        if n_disturbances is None:
+            raise TypeError(f"{name}: a StateSpace plant needs n_disturbances= (how many of its "
+                            f"{abcd[1].shape[1]} inputs, taken first, are disturbances)")
+        k = as_count("n_disturbances", n_disturbances)
+        m = abcd[1].shape[1]
+        if k >= m:
+            raise ValueError(f"n_disturbances must be below the number of inputs {m} (at least one "
+                             f"control input), but found {k}")
+        A, B, C, D = (np.asarray(x) for x in abcd)
+        return Plant(A, B[:, :k], B[:, k:], C, D[:, :k], D[:, k:])
+    if isinstance(plant, tuple | list) and len(plant) == 6:
+        return Plant(*plant)
+    raise TypeError(f"{name} must be an fdsc.Plant, a python-control StateSpace (with "
+                    f"n_disturbances) or a tuple (A, B1, B2, C, D1, D2), but found "
+                    f"{type(plant).__name__}")

@@ -13,20 +13,13 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.signal import ShortTimeFFT, get_window
 
-from ._validation import as_choice, as_finite_real, as_positive, as_vector, check_type
+from ._validation import as_finite_real, as_positive, as_vector, check_type
 from .bands import Band
 from .exceptions import DimensionError
-from .plant import paper_data
 
 __all__ = [
     "Sinusoids",
     "Piecewise",
-    "lf_disturbance",
-    "hf_disturbance",
-    "paper_disturbance",
-    "PAPER_DISTURBANCES",
-    "mixed_disturbance",
-    "piecewise_disturbance",
     "dominance_degree",
     "localized_dominance",
     "LocalizedDominance",
@@ -173,64 +166,17 @@ class Piecewise:
         return np.where((k >= 0) & (k < len(self.parts)), k, -1)
 
 
-def _paper_sinusoids(key):
-    v = paper_data("simulation")[key]["value"]
-    return Sinusoids(v["amplitudes"], v["frequencies"])
 
 
-def lf_disturbance():
-    """``d_l(t) = sin 0.1t + sin 0.2t + sin 0.3t`` (eq. d-l)."""
-    return _paper_sinusoids("lf_disturbance")
 
 
-def hf_disturbance():
-    """``d_h(t) = sin 100t + sin 200t + sin 300t`` (eq. d-h)."""
-    return _paper_sinusoids("hf_disturbance")
 
 
-#: The paper's stationary disturbances: eq. (56) (LF) and eq. (57) (HF).
-PAPER_DISTURBANCES = ("LF", "HF")
 
 
-def paper_disturbance(kind):
-    """The paper's LF (eq. (56)) or HF (eq. (57)) disturbance by name.
-
-    Examples
-    --------
-    >>> paper_disturbance("HF").frequencies
-    array([100., 200., 300.])
-    """
-    as_choice("kind", kind, PAPER_DISTURBANCES)
-    return lf_disturbance() if kind == "LF" else hf_disturbance()
 
 
-def mixed_disturbance(rho_p):
-    """``d = d_h + ρ_p d_l`` (paper Fig. 7).
 
-    Examples
-    --------
-    >>> round(mixed_disturbance(0.5).dominance(Band.hf(10.0)), 6)   # 3 / (3 + 3 * 0.25)
-    0.8
-    """
-    rho_p = as_finite_real("rho_p", rho_p)
-    if rho_p < 0:
-        raise ValueError(f"rho_p must be >= 0, but found {rho_p}")
-    return hf_disturbance() + lf_disturbance().scaled(rho_p)
-
-
-def piecewise_disturbance(T, rho_t, rho_p_star):
-    """The piecewise disturbance (paper eq. (58)) of paper Fig. 8.
-
-    HF on ``[0, T)``, ``ρ*_p`` times LF on ``[T, T + ρ_t T)``, HF on
-    ``[T + ρ_t T, 2T + ρ_t T)``.
-    """
-    T = as_positive("T", T)
-    rho_t = as_finite_real("rho_t", rho_t)
-    if rho_t < 0:
-        raise ValueError(f"rho_t must be >= 0, but found {rho_t}")
-    rho_p_star = as_finite_real("rho_p_star", rho_p_star)
-    hf, lf = hf_disturbance(), lf_disturbance().scaled(rho_p_star)
-    return Piecewise([0.0, T, T + rho_t * T, 2 * T + rho_t * T], (hf, lf, hf))
 
 
 def _record(x, dt):
@@ -262,7 +208,7 @@ def dominance_degree(x, dt, band, *, window="hann"):
     Examples
     --------
     >>> t = np.arange(0, 500, 0.002)
-    >>> x = mixed_disturbance(0.5)(t)
+    >>> x = Sinusoids([1.0, 0.5], [100.0, 0.2])(t)   # in-band share 1 / (1 + 0.25) = 0.8
     >>> round(dominance_degree(x, 0.002, Band.hf(10.0)), 3)
     0.8
     """

@@ -24,7 +24,7 @@ from .bands import Band
 from .energy import check_weight
 from .exceptions import MemoryLimitError, UnstableError, UnstableRunWarning
 from .frequency import check_no_pole_at
-from .plant import LTISystem
+from .plant import LTISystem, as_system
 from .signals import Piecewise, Sinusoids
 
 __all__ = ["SimResult", "particular", "simulate", "time_grid", "envelope", "estimate_memory",
@@ -365,6 +365,24 @@ def envelope(t, y, every):
     return t[starts], np.minimum.reduceat(y, starts, axis=0), np.maximum.reduceat(y, starts, axis=0)
 
 
+def _is_one_system(obj):
+    """True for an LTISystem, a StateSpace or an (A, B, C, D) tuple of arrays (not of systems)."""
+    if isinstance(obj, LTISystem) or type(obj).__name__ == "StateSpace":
+        return True
+    return isinstance(obj, tuple) and len(obj) == 4 and all(
+        isinstance(a, np.ndarray | list | tuple | int | float) and not _is_one_system(a) for a in obj)
+
+
+def _as_modes(modes):
+    """One system, or a non-empty list or tuple of systems, as a list of :class:`LTISystem`."""
+    if _is_one_system(modes):
+        return [as_system(modes, "modes")]
+    if not isinstance(modes, list | tuple) or not modes:
+        raise TypeError("modes must be a system (LTISystem, StateSpace or (A, B, C, D)) or a "
+                        f"non-empty list of systems, but found {type(modes).__name__}")
+    return [as_system(m, f"modes[{k}]") for k, m in enumerate(modes)]
+
+
 def simulate(modes, d, t, *, x0=None, law_bands=None, law_Q=None, law="previous", sigma0=0,
              kernel="numba", max_memory=DEFAULT_MAX_MEMORY):
     """Simulate an LTI (one mode) or switched (several modes) closed loop exactly on a grid.
@@ -413,10 +431,7 @@ def simulate(modes, d, t, *, x0=None, law_bands=None, law_Q=None, law="previous"
     UnstableRunWarning
         If a mode is not Hurwitz but the run stayed finite (its energies grow with the horizon).
     """
-    modes = [modes] if isinstance(modes, LTISystem) else list(modes) if isinstance(
-        modes, list | tuple) else modes
-    if not isinstance(modes, list) or not modes or not all(isinstance(m, LTISystem) for m in modes):
-        raise TypeError("modes must be an LTISystem or a non-empty list of LTISystem")
+    modes = _as_modes(modes)
     n = modes[0].n_states
     B, D = modes[0].B, modes[0].D
     for k, m in enumerate(modes[1:], start=1):

@@ -22,7 +22,7 @@ from .bands import PHI, Band
 from .energy import check_weight
 from .exceptions import VerificationError
 from .lmi import DEFAULT_MARGIN, _sym, solve_checked
-from .plant import LTISystem
+from .plant import LTISystem, as_system
 
 __all__ = ["Theorem1Result", "theorem1_matrices", "certify_q", "design_q", "DEFAULT_GAMMA_TOL"]
 
@@ -65,8 +65,7 @@ def _validate(modes, bands):
     if len(bands) != len(modes):
         raise ValueError(f"bands must list one range per mode: {len(modes)} modes, "
                          f"{len(bands)} bands")
-    if not all(isinstance(m, LTISystem) for m in modes):
-        raise TypeError("modes must be fdsc.LTISystem closed loops")
+    modes = [as_system(m, f"modes[{k}]") for k, m in enumerate(modes)]
     if not all(isinstance(b, Band) for b in bands):
         raise TypeError("bands must be fdsc.Band")
     if any(b.is_complex for b in bands):

@@ -27,7 +27,7 @@ from .bands import Band
 from .exceptions import InfeasibleError, IterationLimitError, VerificationError
 from .frequency import band_peak, sigma_max
 from .lmi import DEFAULT_MARGIN, _sym, real_embedding_parts, solve_checked
-from .plant import Plant
+from .plant import as_plant
 
 __all__ = ["SynthesisResult", "DirectResult", "synthesize", "synthesize_hinf", "optimize_gain",
            "check_stabilizable", "DEFAULT_EPSILON", "DEFAULT_SIGMA", "SWEEP_RTOL", "PBH_RTOL"]
@@ -64,6 +64,7 @@ def check_stabilizable(plant, *, rtol=PBH_RTOL):
 
     Examples
     --------
+    >>> from fdsc import Plant
     >>> p = Plant([[1.0, 0.0], [0.0, -1.0]], [[1.0], [1.0]], [[0.0], [1.0]], [[1.0, 1.0]],
     ...           [[0.0]], [[0.0]])
     >>> check_stabilizable(p)  # doctest: +ELLIPSIS
@@ -71,7 +72,7 @@ def check_stabilizable(plant, *, rtol=PBH_RTOL):
     ...
     fdsc.exceptions.InfeasibleError: plant: the eigenvalue 1 of A is not controllable from B2 ...
     """
-    check_type("plant", plant, Plant)
+    plant = as_plant(plant)
     rtol = as_positive("rtol", rtol)
     A, B2 = plant.A, plant.B2
     n = A.shape[0]
@@ -125,8 +126,8 @@ class SynthesisResult:
 
 
 def _check(plant, band):
-    check_type("plant", plant, Plant)
     check_type("band", band, Band)
+    return as_plant(plant)
 
 
 def _herm_pair(n, name, cplx):
@@ -202,12 +203,12 @@ def synthesize(plant, band, *, epsilon=DEFAULT_EPSILON, sigma=DEFAULT_SIGMA,
 
     Examples
     --------
-    >>> from fdsc import aircraft
-    >>> res = synthesize(aircraft(), Band.lf(1.0))
+    >>> from fdsc import random_plant
+    >>> res = synthesize(random_plant(np.random.default_rng(7)), Band.lf(1.0))
     >>> bool(res.gamma_sweep <= res.gamma_lmi * (1 + 1e-5)), bool(np.all(res.poles.real < 0))
     (True, True)
     """
-    _check(plant, band)
+    plant = _check(plant, band)
     if band.kind == "EF":
         raise ValueError("band: use synthesize_hinf for the entire frequency range")
     epsilon = as_positive("epsilon", epsilon)
@@ -295,12 +296,12 @@ def synthesize_hinf(plant, *, margin=DEFAULT_MARGIN):
 
     Examples
     --------
-    >>> from fdsc import aircraft
-    >>> res = synthesize_hinf(aircraft())
+    >>> from fdsc import random_plant
+    >>> res = synthesize_hinf(random_plant(np.random.default_rng(7)))
     >>> bool(res.gamma_sweep <= res.gamma_lmi * (1 + 1e-5))
     True
     """
-    check_type("plant", plant, Plant)
+    plant = as_plant(plant)
     margin = as_positive("margin", margin)
     check_stabilizable(plant)
     n, mu, p = plant.n_states, plant.n_controls, plant.C.shape[0]
@@ -381,7 +382,7 @@ def optimize_gain(plant, band, K0, *, n_starts=4, spread=0.5, n_grid=400, maxite
     IterationLimitError
         If no start converged within ``maxiter`` iterations.
     """
-    _check(plant, band)
+    plant = _check(plant, band)
     K0 = np.array(as_matrix("K0", K0, (plant.n_controls, plant.n_states)))
     n_starts = as_count("n_starts", n_starts)
     spread = as_nonnegative("spread", spread)

@@ -1,5 +1,5 @@
 import sys
 from pathlib import Path
 
-# the tests import helpers that live beside them (_random_systems, check_book_html)
+# the tests import helpers that live beside them (check_book_html, compare_records)
 sys.path.insert(0, str(Path(__file__).resolve().parent))

@@ -18,9 +18,11 @@ from fdsc import (
     MemoryLimitError,
     Plant,
     SingularFrequencyError,
+    Sinusoids,
     UnstableError,
     UnstableRunWarning,
     band_peak,
+    dominance_degree,
     sigma_max,
 )
 from fdsc.energy import (
@@ -31,8 +33,9 @@ from fdsc.energy import (
     steady_state_power,
 )
 from fdsc.lmi import gkyp_gamma
-from fdsc.scenarios import run_controller, stationary_runs, window_ratios
-from fdsc.signals import Sinusoids, dominance_degree, paper_disturbance
+from fdsc.paper.data import paper_disturbance, run_controller
+from fdsc.paper.stationary import stationary_runs
+from fdsc.paper.theorem1 import window_ratios
 from fdsc.simulate import particular, simulate, time_grid
 from fdsc.switching import certify_q, design_q
 
@@ -106,19 +109,19 @@ CASES = {
                                 ValueError, r"t must have finite entries"),
     "window times of another length": (lambda: fdeef(np.linspace(0, 1, 6), X, X, Band.lf(1.0), Q2),
                                        DimensionError, r"t has 6 samples but x has 5 rows"),
-    "complex initial state": (lambda: fdeef_autonomous(STABLE.A, [1j, 0.0], Band.lf(1.0), Q2), ValueError,
+    "complex initial state": (lambda: fdeef_autonomous(STABLE, [1j, 0.0], Band.lf(1.0), Q2), ValueError,
                               r"x0 must be real"),
-    "initial state of wrong size": (lambda: fdeef_autonomous(STABLE.A, [1.0, 0.0, 0.0], Band.lf(1.0), Q2),
+    "initial state of wrong size": (lambda: fdeef_autonomous(STABLE, [1.0, 0.0, 0.0], Band.lf(1.0), Q2),
                                     DimensionError, r"x0: expected 2 entries but found 3"),
-    "FD-EEF closed form, unstable A": (lambda: fdeef_autonomous(UNSTABLE.A, [1.0, 0.0], Band.lf(1.0), Q2),
-                                       UnstableError, r"A is not stable"),
+    "FD-EEF closed form, unstable A": (lambda: fdeef_autonomous(UNSTABLE, [1.0, 0.0], Band.lf(1.0), Q2),
+                                       UnstableError, r"sys is not stable"),
     "FD-EEF by Parseval, unstable A": (
-        lambda: fdeef_parseval_autonomous(UNSTABLE.A, [1.0, 0.0], Band.lf(1.0), Q2),
-        UnstableError, r"A is not stable"),
+        lambda: fdeef_parseval_autonomous(UNSTABLE, [1.0, 0.0], Band.lf(1.0), Q2),
+        UnstableError, r"sys is not stable"),
     "steady state of an unstable loop": (
-        lambda: steady_state_power(UNSTABLE.A, UNSTABLE.B, TONE, Band.lf(1.0), Q2),
+        lambda: steady_state_power(UNSTABLE, TONE, Band.lf(1.0), Q2),
         UnstableError, r"a steady state needs"),
-    "steady state, band not a Band": (lambda: steady_state_power(STABLE.A, STABLE.B, TONE, "LF", Q2),
+    "steady state, band not a Band": (lambda: steady_state_power(STABLE, TONE, "LF", Q2),
                                       TypeError, r"band must be an fdsc.Band"),
     # --- signals --------------------------------------------------------------------------------
     "complex amplitudes": (lambda: Sinusoids([1j], [1.0]), ValueError, r"amplitudes must be real"),

@@ -3,9 +3,10 @@ import json
 import numpy as np
 import pytest
 
-from fdsc.__main__ import main, to_jsonable
-from fdsc.experiments import VERDICTS, gamma_vs_gamma_squared, printed_bounds, verdict
-from fdsc.record import FIGURE_IDS, reproduction_record
+from fdsc.paper.cli import main, to_jsonable
+from fdsc.paper.gkyp_lemma import gamma_vs_gamma_squared, printed_bounds
+from fdsc.paper.record import FIGURE_IDS, reproduction_record
+from fdsc.paper.verdict import VERDICTS, verdict
 
 
 @pytest.mark.parametrize(
@@ -102,7 +103,7 @@ def test_cli_writes_the_record(tmp_path, capsys):
 def test_cli_refuses_an_unwritable_out_before_computing(tmp_path, monkeypatch):
     (tmp_path / "file").write_text("x")
     called = []
-    monkeypatch.setattr("fdsc.__main__.reproduction_record", lambda: called.append(1))
+    monkeypatch.setattr("fdsc.paper.cli.reproduction_record", lambda: called.append(1))
     with pytest.raises(SystemExit, match=r"--out .*file/sub: cannot write there"):
         main(["reproduce", "--out", str(tmp_path / "file" / "sub")])
     assert called == []

@@ -5,17 +5,8 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from fdsc import (
-    Band,
-    DimensionError,
-    LTISystem,
-    aircraft,
-    band_peak,
-    freqresp,
-    paper_bands,
-    paper_gains,
-    sigma_max,
-)
+from fdsc import Band, DimensionError, LTISystem, band_peak, freqresp, sigma_max
+from fdsc.paper.data import aircraft, paper_bands, paper_gains
 
 
 def first_order(a=1.0):

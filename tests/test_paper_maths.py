@@ -5,19 +5,17 @@ import pytest
 from numpy.testing import assert_allclose
 from scipy.integrate import quad
 
-from fdsc import Band, LTISystem
-from fdsc.paper_maths import (
-    autonomous_lyapunov_jumps,
-    in_band_gamma_slip,
+from fdsc import Band, LTISystem, Sinusoids
+from fdsc.paper.data import our_q
+from fdsc.paper.frequency_ranges import (
     out_of_band_fraction,
     paley_wiener_table,
     prop1_weight_check,
     truncated_energy,
     truncated_spectrum,
-    windowed_tone_ratio,
 )
-from fdsc.scenarios import autonomous_stability, our_q
-from fdsc.signals import Sinusoids
+from fdsc.paper.gkyp_lemma import in_band_gamma_slip, windowed_tone_ratio
+from fdsc.paper.theorem1 import autonomous_lyapunov_jumps, autonomous_stability
 
 LF_SIGNAL = Sinusoids([1.0, 1.0, 1.0], [0.1, 0.2, 0.3])
 

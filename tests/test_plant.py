@@ -2,7 +2,8 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from fdsc import DimensionError, LTISystem, Plant, aircraft, paper_bands, paper_data, paper_gains
+from fdsc import DimensionError, LTISystem, Plant
+from fdsc.paper.data import aircraft, paper_bands, paper_data, paper_gains
 
 
 def test_aircraft_matches_printed_matrices():
@@ -75,5 +76,5 @@ def test_bad_shapes(make, match):
 
 
 def test_missing_data_file():
-    with pytest.raises(FileNotFoundError, match="no data file"):
+    with pytest.raises(ValueError, match="name must be one of .*aircraft"):
         paper_data("nonexistent")

@@ -2,16 +2,8 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from fdsc import Band
-from fdsc.signals import (
-    Sinusoids,
-    dominance_degree,
-    hf_disturbance,
-    lf_disturbance,
-    localized_dominance,
-    mixed_disturbance,
-    piecewise_disturbance,
-)
+from fdsc import Band, Sinusoids, dominance_degree, localized_dominance
+from fdsc.paper.data import hf_disturbance, lf_disturbance, mixed_disturbance, piecewise_disturbance
 
 
 def test_paper_disturbances():

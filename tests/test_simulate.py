@@ -2,9 +2,15 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from fdsc import LTISystem, aircraft, paper_gains
-from fdsc.selectiveness import paper_modes
-from fdsc.signals import Sinusoids, lf_disturbance, mixed_disturbance, piecewise_disturbance
+from fdsc import LTISystem, Sinusoids
+from fdsc.paper.data import (
+    aircraft,
+    lf_disturbance,
+    mixed_disturbance,
+    paper_gains,
+    paper_modes,
+    piecewise_disturbance,
+)
 from fdsc.simulate import particular, simulate, time_grid
 
 

@@ -3,10 +3,10 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from fdsc import Band, InfeasibleError, Plant, aircraft, band_peak, paper_bands, paper_gains
-from fdsc.experiments import verdict
+from fdsc import Band, InfeasibleError, Plant, band_peak, random_plant
 from fdsc.lmi import gkyp_gamma
-from fdsc.passive import random_plant
+from fdsc.paper.data import aircraft, paper_bands, paper_gains
+from fdsc.paper.verdict import verdict
 from fdsc.synthesis import SWEEP_RTOL, check_stabilizable, optimize_gain, synthesize, synthesize_hinf
 
 

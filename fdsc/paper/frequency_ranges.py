@@ -1,50 +1,131 @@
-"""The paper's mathematics, checked: numbers that decide statements of the text.
-
-Each function returns plain data that a chapter glues into its prose:
-
-- :func:`prop1_weight_check`: the factorizations of the frequency weight
-  ``[(jω)* 1] Ψ [(jω)* 1]*`` printed in the proof of Proposition 1, against the weight itself;
-- :func:`truncated_spectrum` and :func:`out_of_band_fraction`: the energy that a causal,
-  finitely long sum of sinusoids has outside a band (Paley–Wiener: never zero);
-- :func:`paley_wiener_table`: that fraction for the paper's LF and HF test signals;
-- :func:`windowed_tone_ratio` and :func:`in_band_gamma_slip`: the energy ratio of an in-band
-  tone against γ and γ² (the γ-for-γ² slip of Lemma 1, (P.1), (P.2) and Remark 5);
-- :func:`autonomous_lyapunov_jumps`: the jumps of V = xᵀ P^s_σ x at the switches of the
-  autonomous (d = 0) switched loop, the setting of Theorem 1 statement (1).
-
-Equation numbers are those of the compiled paper.
+"""Chapter 'frequency_ranges': Sec. II-A, Definitions 1-3 (Ψ of the three ranges, the weight's
+sign, Paley–Wiener, dominance degrees) and the factorizations printed in Proposition 1's proof.
 """
 
 import math
 
 import numpy as np
-from scipy.signal import lsim
 
-from ._validation import as_count, as_positive, as_vector, check_type
-from .bands import Band
-from .frequency import band_peak, sigma_max
-from .plant import LTISystem, aircraft, paper_bands, paper_gains
-from .selectiveness import paper_modes
-from .signals import Sinusoids, hf_disturbance, lf_disturbance
-from .simulate import simulate, time_grid
-from .switching import Theorem1Result
+from .._validation import as_positive, as_vector, check_type
+from ..bands import Band
+from ..signals import Sinusoids, dominance_degree, localized_dominance
+from .data import (
+    hf_disturbance,
+    lf_disturbance,
+    mixed_disturbance,
+    paper_bands,
+    paper_data,
+    piecewise_disturbance,
+)
 
 __all__ = [
+    "psi_table",
+    "psi_weights",
+    "dominance_vs_rho",
+    "localized_dominance_piecewise",
+    "PALEY_WIENER_HORIZONS",
     "prop1_weight_check",
     "truncated_spectrum",
     "truncated_energy",
     "out_of_band_fraction",
     "paley_wiener_table",
-    "windowed_tone_ratio",
-    "in_band_gamma_slip",
-    "autonomous_lyapunov_jumps",
-    "PALEY_WIENER_HORIZONS",
 ]
+
+
+def psi_table():
+    """Ψ of each of the paper's bands (Ω_1, Ω_2, Ω_3 of eq. configuration) as nested lists."""
+    out = {}
+    for kind, band in paper_bands().items():
+        if kind == "EF":
+            continue
+        psi = band.psi
+        out[kind] = {"label": band.label, "psi": psi.tolist(), "complex": band.is_complex}
+    return out
+
+
+def psi_weights(omega=None):
+    """The weight ``[jω;1]* Ψ [jω;1]`` and its real-signal part for the paper's three bands.
+
+    Returns
+    -------
+    dict
+        ``{"omega": (k,), "LF": {"weight": (k,), "real_weight": (k,), "lower", "upper"}, ...}``
+        over positive and negative ω.
+    """
+    if omega is None:
+        pos = np.geomspace(1e-2, 1e3, 600)
+        omega = np.concatenate([-pos[::-1], pos])
+    omega = np.asarray(omega, dtype=float)
+    out = {"omega": omega}
+    for kind, band in paper_bands().items():
+        if kind == "EF":
+            continue
+        out[kind] = {"weight": band.weight(omega), "real_weight": band.real_weight(omega),
+                     "lower": band.lower, "upper": band.upper, "label": band.label}
+    return out
+
+
+def dominance_vs_rho(rhos, *, horizon=500.0, dt=2e-3):
+    """α(Ω_3) of the mixed disturbance ``d_h + ρ_p d_l`` (paper Fig. 7): exact and by FFT.
+
+    Parameters
+    ----------
+    rhos : (k,) array_like
+        Values of ρ_p.
+    horizon, dt : float
+        Record used by the FFT estimate (the paper's t ∈ [0, 500]).
+    """
+    hf = paper_bands()["HF"]
+    t = np.arange(0.0, horizon, dt)
+    exact, fft = [], []
+    for rho in np.asarray(rhos, dtype=float):
+        d = mixed_disturbance(rho)
+        exact.append(d.dominance(hf))
+        fft.append(dominance_degree(d(t), dt, hf))
+    return {"rho_p": np.asarray(rhos, dtype=float), "exact": np.array(exact),
+            "fft": np.array(fft), "horizon": horizon, "dt": dt}
+
+
+def localized_dominance_piecewise(rho_t=0.2, *, T=None, window_length=60.0, hop=5.0, dt=2e-3):
+    """α(Ω_1, T_l) and α(Ω_3, T_l) along the piecewise disturbance of paper Fig. 8 (eq. (58)).
+
+    Parameters
+    ----------
+    rho_t : float
+        Relative length of the LF segment.
+    T : float, optional
+        Length of the first HF segment in s (default the paper's T = 500); pass the T of the run
+        the result is drawn beside.
+    window_length, hop, dt : float
+        STFT window, hop and sampling step in s.
+
+    Returns
+    -------
+    dict
+        ``breaks``, ``rho_t``, ``T``, ``window_length`` and per band ``{"t", "alpha"}``.
+    """
+    sim = paper_data("simulation")
+    T = sim["piecewise_T"]["value"] if T is None else T
+    d = piecewise_disturbance(T, rho_t, sim["piecewise_rho_p_star"]["value"])
+    t = np.arange(0.0, d.breaks[-1], dt)
+    x = d(t)
+    bands = paper_bands()
+    out = {"breaks": d.breaks, "rho_t": rho_t, "T": T}
+    for kind in ("LF", "HF"):
+        loc = localized_dominance(x, dt, bands[kind], window_length=window_length, hop=hop)
+        out[kind] = {"t": loc.t, "alpha": loc.alpha}
+    out["window_length"] = window_length
+    return out
+
 
 #: Truncation lengths T (s) of the paper's test signals in :func:`paley_wiener_table`.
 PALEY_WIENER_HORIZONS = (50.0, 500.0, 5000.0)
+
+
 #: Gauss–Legendre nodes per panel in :func:`out_of_band_fraction`.
 _GL_NODES = 16
+
+
 #: Panels per half period 2π/T of the spectrum's oscillation in ω.
 _PANELS_PER_HALF_PERIOD = 2
 
@@ -266,130 +347,3 @@ def paley_wiener_table(horizons=PALEY_WIENER_HORIZONS):
             rows.append({"signal": label, "band": band.label, "T": float(T),
                          "fraction_out": out_of_band_fraction(d, T, band)})
     return rows
-
-
-def windowed_tone_ratio(system, omega0, *, tau, dt):
-    """Energy ratio ``∫zᵀz / ∫d²`` of the windowed tone ``d = exp(−((t−4τ)/τ)²) sin(ω0 t)``.
-
-    The tone's spectrum is concentrated within about ``2/τ`` of ω0, so for slow windows the
-    ratio tends to ``σ_max(G(jω0))²`` (one input). Simulated from rest over ``[0, 8τ]`` with
-    ``scipy.signal.lsim`` (first-order hold, exact for piecewise-linear input).
-
-    Parameters
-    ----------
-    system : LTISystem
-        Stable closed loop with one input.
-    omega0, tau, dt : float
-        Tone frequency (rad/s), window width (s), sample step (s).
-
-    Returns
-    -------
-    dict
-        ``ratio`` (simulated), ``gain_sq`` (σ_max(G(jω0))²).
-
-    Examples
-    --------
-    >>> sys = LTISystem([[-1.0]], [[1.0]], [[1.0]], [[0.0]])  # 1/(s+1)
-    >>> r = windowed_tone_ratio(sys, 1.0, tau=60.0, dt=0.05)
-    >>> round(r["gain_sq"], 6), abs(r["ratio"] - 0.5) < 1e-3
-    (0.5, True)
-    """
-    check_type("system", system, LTISystem)
-    omega0, tau, dt = as_positive("omega0", omega0), as_positive("tau", tau), as_positive("dt", dt)
-    if system.B.shape[1] != 1:
-        raise ValueError(f"system must have one input, but found {system.B.shape[1]}")
-    t = np.arange(0.0, 8.0 * tau, dt)
-    d = np.exp(-(((t - 4.0 * tau) / tau) ** 2)) * np.sin(omega0 * t)
-    _, z, _ = lsim((system.A, system.B, system.C, system.D), d, t, interp=True)
-    z = z.reshape(t.size, -1)
-    ratio = float(np.trapezoid(np.sum(z**2, axis=1), t) / np.trapezoid(d**2, t))
-    return {"ratio": ratio, "gain_sq": float(sigma_max(system, [omega0])[0] ** 2)}
-
-
-def in_band_gamma_slip(gain="K_f3", kind="HF", omega0=10.5, *, tau=30.0, dt=5e-3):
-    """γ against γ² in the paper's own in-band setting: a tone inside Ω_3 under K_f3.
-
-    (P.1) eq. (14), (P.2) eq. (15) and Remark 5 eq. (54) compare an energy ratio with an
-    (unsquared) gain. This evaluates the energy ratio of a slowly windowed tone inside the
-    band against the band peak γ of σ_max and against γ².
-
-    Returns
-    -------
-    dict
-        ``gain, kind, omega0, tau, gamma`` (band peak of the printed gain), ``gamma_sq``,
-        ``gain_sq`` (σ_max(G(jω0))²), ``ratio`` (simulated), ``exceeds_gamma``,
-        ``below_gamma_sq``.
-
-    Examples
-    --------
-    >>> r = in_band_gamma_slip()
-    >>> r["exceeds_gamma"], r["below_gamma_sq"]
-    (True, True)
-    """
-    band = paper_bands()[kind]
-    if not band.contains(omega0):
-        raise ValueError(f"omega0 must lie in the {band.label} band, but found {omega0} rad/s")
-    cl = aircraft().closed_loop(paper_gains()[gain])
-    gamma = band_peak(cl, band).gamma
-    r = windowed_tone_ratio(cl, omega0, tau=tau, dt=dt)
-    return {"gain": gain, "kind": kind, "omega0": float(omega0), "tau": float(tau), "gamma": gamma,
-            "gamma_sq": gamma**2, "gain_sq": r["gain_sq"], "ratio": r["ratio"],
-            "exceeds_gamma": r["ratio"] > gamma, "below_gamma_sq": r["ratio"] < gamma**2}
-
-
-def autonomous_lyapunov_jumps(result, n_initial=40, *, horizon=60.0, dt=1e-3, seed=3, Q=None):
-    """Jumps of ``V = xᵀ P^s_σ x`` at the switches of the autonomous switched loop (d = 0).
-
-    Theorem 1 statement (1) is about d = 0; its proof differentiates V between switches and
-    never compares V across a switch. The runs start from the same random initial states as
-    :func:`fdsc.scenarios.autonomous_stability` (same ``seed``).
-
-    Parameters
-    ----------
-    result : Theorem1Result
-        Supplies P^s_1, P^s_2 and (unless ``Q`` is given) the law's Q's.
-    n_initial : int
-        Number of initial states (standard normal).
-    horizon, dt : float
-        Length and step of each run in s.
-    seed : int
-    Q : list of (n, n) array_like, optional
-        Q's of the switching law.
-
-    Returns
-    -------
-    dict
-        ``ratios`` V(t⁺)/V(t⁻) at all switches of all runs, ``max_ratio``, ``frac_up`` (share
-        of switches at which V increases), ``n_switches``, ``n_runs``, ``horizon``,
-        ``final_ratio`` (‖x(T)‖/‖x(0)‖ per run).
-
-    Examples
-    --------
-    >>> from fdsc.scenarios import our_q
-    >>> j = autonomous_lyapunov_jumps(our_q(), 3, horizon=5.0)
-    >>> j["n_runs"], bool(j["max_ratio"] > 1)
-    (3, True)
-    """
-    check_type("result", result, Theorem1Result)
-    n_initial = as_count("n_initial", n_initial)
-    pm = paper_modes()
-    Q = result.Q if Q is None else Q
-    Ps = np.array(result.Ps)
-    rng = np.random.default_rng(seed)
-    t = time_grid(horizon, dt)
-    zero = Sinusoids([0.0], [1.0])
-    ratios, final = [], []
-    for _ in range(n_initial):
-        x0 = rng.standard_normal(Ps.shape[1])
-        sim = simulate(pm["modes"], zero, t, x0=x0, law_bands=pm["bands"], law_Q=Q)
-        k = np.flatnonzero(np.diff(sim.sigma)) + 1
-        x = sim.x[k]
-        before = np.einsum("ki,kij,kj->k", x, Ps[sim.sigma[k - 1]], x)
-        after = np.einsum("ki,kij,kj->k", x, Ps[sim.sigma[k]], x)
-        ratios.append(after / before)
-        final.append(float(np.linalg.norm(sim.x[-1]) / np.linalg.norm(x0)))
-    ratios = np.concatenate(ratios)
-    return {"ratios": ratios, "max_ratio": float(ratios.max()) if ratios.size else 1.0,
-            "frac_up": float(np.mean(ratios > 1)) if ratios.size else 0.0,
-            "n_switches": int(ratios.size), "n_runs": n_initial, "horizon": float(horizon),
-            "final_ratio": np.array(final)}

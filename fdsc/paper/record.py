@@ -4,18 +4,37 @@
 ``DIR/reproduction.json``; the book's introduction renders the same entries.
 """
 
-from .experiments import GAIN_ORDER, VERDICTS, gain_band_table, printed_bounds, verdict
-from .passive import bound_candidates, gain_comparison, hf_best, recompute_gains, sigma_curves
-from .plant import paper_data, paper_gains
-from .scenarios import STATIONARY_DT, STATIONARY_HORIZON, our_q, stationary_runs, theorem1_table
-from .selectiveness import prop1_cases, prop1_summary, table1_trends
 
-__all__ = ["reproduction_record", "environment", "VERDICTS", "FIGURE_IDS", "PAPER_FIGURES",
-           "figure_status"]
+
+
+from .data import (
+    STATIONARY_DT,
+    STATIONARY_HORIZON,
+    our_q,
+    paper_data,
+    paper_gains,
+)
+from .environment import environment
+from .frequency_selective import prop1_cases, prop1_summary, table1_trends
+from .gkyp_lemma import gain_band_table, printed_bounds
+from .names import GAIN_ORDER
+from .passive_controllers import bound_candidates, gain_comparison, hf_best, recompute_gains, sigma_curves
+from .stationary import stationary_runs
+from .theorem1 import theorem1_table
+from .verdict import VERDICTS, verdict
+
+__all__ = [
+    "reproduction_record",
+    "FIGURE_IDS",
+    "PAPER_FIGURES",
+    "figure_status",
+]
+
 
 #: The record's figure entries, named by content, with the number of the paper figure each
 #: reproduces (numbers of the compiled tex, whose Fig. 2 is the code-availability box).
 FIGURE_IDS = {"sigma_max": 3, "lf_outputs": 4, "hf_outputs": 5, "hf_l2": 6}
+
 
 #: Every figure of the paper (compiled numbering): what it shows and the chapter that redraws it
 #: (None: not redrawn yet).
@@ -76,22 +95,6 @@ def _paper_bounds():
 
 def _worst(verdicts):
     return max(verdicts, key=VERDICTS.index)
-
-
-def environment():
-    """Versions of Python and of the numerical packages (for the record and the book)."""
-    import platform
-    from importlib.metadata import PackageNotFoundError, version
-
-    pkgs = {}
-    for name in ("numpy", "scipy", "cvxpy", "clarabel", "control", "matplotlib", "numba",
-                 "jupyter-book", "myst-nb", "playwright"):
-        try:
-            pkgs[name] = version(name)
-        except PackageNotFoundError:
-            pkgs[name] = None
-    return {"python": platform.python_version(), "platform": platform.platform(),
-            "packages": pkgs}
 
 
 def reproduction_record():

@@ -25,9 +25,11 @@ __all__ = [
     "plot_sigma_timeline",
 ]
 
+
 CONTROLLER_STYLES = {"PassC-EF": ("tab:blue", "-"), "PassC-LF": ("tab:red", "-"),
                      "PassC-HF": ("gold", "-"), "FDSC": ("tab:purple", "-"),
                      "FDSC (our Q)": ("tab:green", "--")}
+
 
 BAND_COLORS = {"LF": "tab:red", "MF": "tab:green", "HF": "tab:orange", "EF": "tab:blue"}
 

@@ -1,58 +1,33 @@
-"""Artefacts of Sec. III: Proposition 1 checked numerically, Remark 1, the FD-EPF of the aircraft
-closed loops, and the trends of Table I.
-
-Plain-data functions called by the book and the reproduction record.
+"""Chapter 'frequency_selective': Sec. III, FD-EEF/FD-EPF, Proposition 1 on random cases, Remark 1,
+the FD-EPF of the aircraft loops, Table I.
 """
+
 
 import numpy as np
 
-from .bands import Band
-from .energy import fdeef, instantaneous_power, steady_state_power
-from .plant import LTISystem, aircraft, paper_bands, paper_data, paper_gains
-from .signals import Sinusoids, hf_disturbance, lf_disturbance, paper_disturbance
-from .simulate import envelope, simulate, time_grid
+from ..bands import Band
+from ..energy import fdeef, instantaneous_power, steady_state_power
+from ..plant import LTISystem
+from ..random_systems import random_hurwitz, random_spd
+from ..signals import Sinusoids
+from ..simulate import envelope, simulate, time_grid
+from .data import (
+    aircraft,
+    hf_disturbance,
+    lf_disturbance,
+    paper_disturbance,
+    paper_gains,
+    paper_modes,
+)
 
 __all__ = [
-    "paper_modes",
-    "random_spd",
     "prop1_cases",
     "prop1_summary",
+    "alpha_mix",
     "power_vs_alpha",
     "epf_time_series",
-    "alpha_mix",
     "table1_trends",
 ]
-
-
-def paper_modes():
-    """The two FDSC modes of Sec. IV: closed loops, bands and Q's.
-
-    Returns
-    -------
-    dict
-        ``{"modes": [cl_1, cl_2], "bands": [LF, HF], "Q": [Q_1, Q_2], "names": [...]}``.
-    """
-    sw = paper_data("switching")
-    plant, gains, bands = aircraft(), paper_gains(), paper_bands()
-    names = sw["modes"]["value"]
-    return {"modes": [plant.closed_loop(gains[k]) for k in names],
-            "bands": [bands[b] for b in sw["mode_bands"]["value"]],
-            "Q": [np.array(sw["Q_1"]["value"]), np.array(sw["Q_2"]["value"])], "names": names}
-
-
-def random_spd(rng, n, *, condition=None):
-    """A random symmetric positive-definite matrix (Wishart-like), optionally of given condition."""
-    M = rng.standard_normal((n, n))
-    Q = M @ M.T + 1e-3 * np.eye(n)
-    if condition is not None:
-        U, _ = np.linalg.qr(rng.standard_normal((n, n)))
-        Q = U @ np.diag(np.geomspace(1.0, 1.0 / condition, n)) @ U.T
-    return Q
-
-
-def _random_stable(rng, n):
-    A = rng.standard_normal((n, n))
-    return A - (np.max(np.linalg.eigvals(A).real) + rng.uniform(0.2, 2.0)) * np.eye(n)
 
 
 _BANDS = {"LF": Band.lf(1.0), "MF": Band.mf(1.0, 10.0), "HF": Band.hf(10.0)}
@@ -90,7 +65,8 @@ def prop1_cases(n_cases=120, *, seed=2026):
     for c in range(int(n_cases)):
         kind = kinds[c % len(kinds)]
         n = int(rng.integers(2, 4))
-        A, B = _random_stable(rng, n), rng.standard_normal((n, 1))
+        A, B = random_hurwitz(rng, n), rng.standard_normal((n, 1))
+        sys = LTISystem(A, B, np.eye(n), np.zeros((n, 1)))
         if kind == "infinite, Q weighting one state":
             # nearly rank one: condition number 1e8, so Q effectively sees one direction
             Qin, Qout = random_spd(rng, n, condition=1e8), random_spd(rng, n, condition=1e8)
@@ -104,14 +80,13 @@ def prop1_cases(n_cases=120, *, seed=2026):
         d = _tones_in(rng, band_in, int(rng.integers(1, 4)))
         row = {"case": c, "kind": kind, "band_in": band_in, "band_out": band_out, "n": n}
         if kind.startswith("infinite"):
-            s_in = steady_state_power(A, B, d, _BANDS[band_in], Qin).total
-            s_out = steady_state_power(A, B, d, _BANDS[band_out], Qout).total
+            s_in = steady_state_power(sys, d, _BANDS[band_in], Qin).total
+            s_out = steady_state_power(sys, d, _BANDS[band_out], Qout).total
         else:
             periods = float(np.exp(rng.uniform(np.log(0.02), np.log(20.0))))
             horizon = periods * 2 * np.pi / d.frequencies.min()
             dt = min(0.02 / d.frequencies.max(), horizon / 2000)
             horizon = dt * max(200, round(horizon / dt))
-            sys = LTISystem(A, B, np.eye(n), np.zeros((n, 1)))
             sim = simulate(sys, d, time_grid(horizon, dt))
             s_in = fdeef(sim.t, sim.x, sim.xdot, _BANDS[band_in], Qin)
             s_out = fdeef(sim.t, sim.x, sim.xdot, _BANDS[band_out], Qout)
@@ -158,12 +133,12 @@ def power_vs_alpha(alphas):
     for mname, mode in zip(pm["names"], pm["modes"], strict=True):
         for bname, band, Q in zip(("Ω_1, Q_1", "Ω_3, Q_2"), pm["bands"], pm["Q"], strict=True):
             label = f"{mname} loop, {bname}"
-            splits = [steady_state_power(mode.A, mode.B, alpha_mix(a), band, Q) for a in alphas]
+            splits = [steady_state_power(mode, alpha_mix(a), band, Q) for a in alphas]
             curves[label] = np.array([s.total for s in splits])
             ins[label] = np.array([s.in_band for s in splits])
             outs[label] = np.array([s.out_of_band for s in splits])
-            p0 = steady_state_power(mode.A, mode.B, alpha_mix(0.0), band, Q).total
-            p1 = steady_state_power(mode.A, mode.B, alpha_mix(1.0), band, Q).total
+            p0 = steady_state_power(mode, alpha_mix(0.0), band, Q).total
+            p1 = steady_state_power(mode, alpha_mix(1.0), band, Q).total
             crossing[label] = p0 / (p0 - p1) if (p0 - p1) != 0 and 0 <= p0 / (p0 - p1) <= 1 else None
     return {"alpha": alphas, "curves": curves, "in": ins, "out": outs, "crossing": crossing}
 
@@ -219,11 +194,11 @@ def table1_trends(alphas=(0.2, 0.5, 0.8, 0.95, 0.99), *, horizon=100.0, dt=1e-3)
     t = time_grid(horizon, dt)
     for a in alphas:
         d = alpha_mix(a)
-        s = steady_state_power(cl_i.A, cl_i.B, d, band_i, Q_i)
+        s = steady_state_power(cl_i, d, band_i, Q_i)
         pin.append(abs(s.in_band))
         pout.append(abs(s.out_of_band))
         pa.append(s.total)
-        pj.append(steady_state_power(cl_j.A, cl_j.B, d, band_j, Q_j).total)
+        pj.append(steady_state_power(cl_j, d, band_j, Q_j).total)
         sim = simulate(pm["modes"], d, t, law_bands=pm["bands"], law_Q=pm["Q"])
         share = sim.time_share()
         Ti.append(share[1] * horizon)

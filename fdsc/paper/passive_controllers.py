@@ -1,18 +1,25 @@
-"""Artefacts of the passive-controller section (paper Sec. IV, first part; paper Fig. 3; paper Remark 4).
-
-Plain-data functions called by the book and by :func:`fdsc.experiments.reproduction_record`.
+"""Chapter 'passive_controllers': the gains of Sec. IV recomputed by synthesis, paper Fig. 3, the
+printed bounds examined, ε and σ, the best HF design, paper Remark 3's gap, LMIs against a direct search.
 """
+
 
 import numpy as np
 
-from .bands import Band
-from .experiments import verdict
-from .frequency import band_peak, sigma_max
-from .plant import LTISystem, Plant, aircraft, paper_bands, paper_data, paper_gains
-from .synthesis import DEFAULT_EPSILON, optimize_gain, synthesize, synthesize_hinf
+from ..bands import Band
+from ..frequency import band_peak, sigma_max
+from ..plant import LTISystem
+from ..random_systems import random_plant
+from ..synthesis import DEFAULT_EPSILON, optimize_gain, synthesize, synthesize_hinf
+from .data import (
+    aircraft,
+    paper_bands,
+    paper_data,
+    paper_gains,
+)
+from .names import GAIN_BANDS
+from .verdict import verdict
 
 __all__ = [
-    "GAIN_BANDS",
     "recompute_gains",
     "gain_comparison",
     "sigma_curves",
@@ -22,11 +29,7 @@ __all__ = [
     "hf_best",
     "bound_candidates",
     "direct_crosscheck",
-    "random_plant",
 ]
-
-#: Printed gain → the band it was designed for.
-GAIN_BANDS = {"K_f1": "LF", "K_f2": "MF", "K_f3": "HF", "K_e": "EF"}
 
 
 def recompute_gains(plant=None, *, epsilon=DEFAULT_EPSILON, sigma=0.0):
@@ -189,19 +192,6 @@ def bound_candidates(results=None):
     return out
 
 
-def random_plant(rng, n=2, stable=False):
-    """A small random plant: n states, one disturbance, one control, z = [c x; u].
-
-    With ``stable=True`` A is shifted to have spectral abscissa in [-1, -0.1].
-    """
-    A = rng.standard_normal((n, n))
-    if stable:
-        A = A - (np.max(np.linalg.eigvals(A).real) + rng.uniform(0.1, 1.0)) * np.eye(n)
-    return Plant(A, rng.standard_normal((n, 1)), rng.standard_normal((n, 1)),
-                 np.vstack([rng.standard_normal((1, n)), np.zeros((1, n))]), np.zeros((2, 1)),
-                 np.array([[0.0], [1.0]]))
-
-
 def direct_crosscheck(n_plants=6, *, seed=7, kinds=("LF", "MF"), n_starts=3):
     """LMI synthesis against direct minimization of the band peak on seeded random plants.
 
@@ -226,4 +216,3 @@ def direct_crosscheck(n_plants=6, *, seed=7, kinds=("LF", "MF"), n_starts=3):
                          "gamma_sweep": r.gamma_sweep, "gamma_direct": d.gamma_sweep,
                          "lmi_excess": (r.gamma_sweep - d.gamma_sweep) / d.gamma_sweep})
     return rows
-

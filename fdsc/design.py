@@ -1,0 +1,259 @@
+"""An FDSC design: a plant, one state-feedback gain per frequency range, the switching law's Q's
+and their Theorem 1 certificate, in one object that simulates itself.
+
+The paper's controller (Sec. III) switches between I state-feedback gains ``u = K_σ x``; mode i is
+meant for disturbances that dominate the range Ω_i, and the law (paper eq. (31)) picks the mode
+whose weighted FD-EPF ``[ẋ; x]ᵀ (Ψ_i ⊗ Q_i) [ẋ; x]`` is largest. The Q's are either given (and
+certified by Theorem 1, paper eqs. (33)-(34)) or designed by paper Remark 4 around the in-band
+mode.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._validation import as_count, as_matrix, check_type
+from .bands import Band
+from .plant import Plant, as_plant
+from .simulate import simulate
+from .switching import DEFAULT_GAMMA_TOL, Theorem1Result, certify_q, design_q
+from .synthesis import synthesize, synthesize_hinf
+
+__all__ = ["FDSC"]
+
+
+def _bands(bands, count=None):
+    if not isinstance(bands, list | tuple) or len(bands) < 2:
+        raise ValueError("bands must list at least two frequency ranges (one per mode), but found "
+                         f"{bands!r}")
+    for k, b in enumerate(bands):
+        check_type(f"bands[{k}]", b, Band)
+    if count is not None and len(bands) != count:
+        raise ValueError(f"bands must list one range per gain: {count} gains, {len(bands)} bands")
+    return tuple(bands)
+
+
+def _in_band(in_band, n_modes):
+    in_band = as_count("in_band", in_band, 0)
+    if in_band >= n_modes:
+        raise ValueError(f"in_band must be a mode index in [0, {n_modes}), but found {in_band}")
+    return in_band
+
+
+@dataclass(frozen=True)
+class FDSC:
+    """A frequency-dependent switching controller for one plant, certified by Theorem 1.
+
+    Build it with :meth:`from_gains` (gains given) or :meth:`synthesize` (gains synthesized on
+    the bands); the constructor itself takes a finished certificate.
+
+    Parameters
+    ----------
+    plant : Plant
+        The open-loop plant (any form :func:`~fdsc.plant.as_plant` accepts).
+    gains : sequence of (m_u, n) array_like
+        K_i, one per mode.
+    bands : sequence of Band
+        Ω_i, the range of mode i (real Ψ: LF, HF or entire; Theorem 1 and the law need it).
+    in_band : int
+        Index of the in-band mode (0-based): the mode for the range the design cares most about;
+        paper Remark 4 minimizes its γ.
+    certificate : Theorem1Result
+        Theorem 1 for the closed loops of ``gains`` on ``bands``; its Q's are the law's.
+    synthesis : tuple of SynthesisResult, optional
+        The synthesis results, when the gains were synthesized.
+
+    Attributes
+    ----------
+    Q : tuple of (n, n) ndarray
+        The Q_i of the law (from the certificate).
+    gammas : (I,) ndarray
+        γ_i certified by Theorem 1.
+    modes : tuple of LTISystem
+        The closed loops ``(A + B2 K_i, B1, C + D2 K_i, D1)``.
+
+    Examples
+    --------
+    >>> from fdsc import Band, Plant, Sinusoids, time_grid
+    >>> plant = Plant([[0.0, 1.0], [-1.0, -0.2]], [[0.0], [1.0]], [[0.0], [1.0]],
+    ...               [[1.0, 0.0], [0.0, 0.0]], [[0.0], [0.0]], [[0.0], [0.1]])
+    >>> ctrl = FDSC.synthesize(plant, [Band.lf(1.0), Band.hf(10.0)], in_band=1)
+    >>> ctrl.n_modes, bool(np.all(ctrl.gammas > 0))
+    (2, True)
+    >>> run = ctrl.simulate(Sinusoids([1.0], [30.0]), time_grid(2.0, 1e-3))
+    >>> run.z.shape
+    (2001, 2)
+    """
+
+    plant: Plant
+    gains: tuple
+    bands: tuple
+    in_band: int
+    certificate: Theorem1Result
+    synthesis: tuple | None = None
+
+    def __post_init__(self):
+        plant = as_plant(self.plant)
+        if not isinstance(self.gains, list | tuple):
+            raise TypeError(f"gains must be a list of (m_u, n) matrices, but found "
+                            f"{type(self.gains).__name__}")
+        gains = tuple(as_matrix(f"gains[{k}]", K, (plant.n_controls, plant.n_states))
+                      for k, K in enumerate(self.gains))
+        bands = _bands(self.bands, len(gains))
+        in_band = _in_band(self.in_band, len(gains))
+        check_type("certificate", self.certificate, Theorem1Result)
+        if len(self.certificate.Q) != len(gains):
+            raise ValueError(f"certificate must hold one Q per mode ({len(gains)}), but holds "
+                             f"{len(self.certificate.Q)}")
+        for name, val in (("plant", plant), ("gains", gains), ("bands", bands), ("in_band", in_band)):
+            object.__setattr__(self, name, val)
+
+    @classmethod
+    def from_gains(cls, plant, gains, bands, in_band, *, Q=None, gamma_tol=DEFAULT_GAMMA_TOL,
+                   n_disturbances=None):
+        """Build the design from given gains: certify given Q's, or design them.
+
+        Parameters
+        ----------
+        plant : Plant, control.StateSpace or tuple
+            The open-loop plant (see :func:`~fdsc.plant.as_plant`).
+        gains : sequence of (m_u, n) array_like
+            K_i, one per mode (each must stabilize the plant).
+        bands : sequence of Band
+            Ω_i of each mode (real Ψ).
+        in_band : int
+            Index of the in-band mode (0-based).
+        Q : sequence of (n, n) array_like, optional
+            The law's Q_i. Given: certified by :func:`~fdsc.switching.certify_q`. Omitted:
+            designed by paper Remark 4 (:func:`~fdsc.switching.design_q`).
+        gamma_tol : float, optional
+            γ_tol of paper Remark 4 (used only when Q is omitted).
+        n_disturbances : int, optional
+            Number of disturbance inputs of a python-control ``StateSpace`` plant.
+
+        Returns
+        -------
+        FDSC
+
+        Raises
+        ------
+        UnstableError
+            If a gain does not stabilize the plant.
+        InfeasibleError
+            If Theorem 1 cannot certify the given Q's, or no Q's exist for this γ_tol.
+        """
+        plant = as_plant(plant, n_disturbances=n_disturbances)
+        if not isinstance(gains, list | tuple):
+            raise TypeError(f"gains must be a list of (m_u, n) matrices, but found {type(gains).__name__}")
+        bands = _bands(bands, len(gains))
+        in_band = _in_band(in_band, len(gains))
+        modes = [plant.closed_loop(K) for K in gains]
+        if Q is None:
+            cert = design_q(modes, bands, in_band, gamma_tol=gamma_tol)
+        else:
+            cert = certify_q(modes, bands, Q)
+        return cls(plant, tuple(gains), bands, in_band, cert)
+
+    @classmethod
+    def synthesize(cls, plant, bands, in_band, *, Q=None, gamma_tol=DEFAULT_GAMMA_TOL,
+                   n_disturbances=None, **synthesis_options):
+        """Synthesize one gain per band, then build the design as :meth:`from_gains` does.
+
+        Each gain minimizes the certified gain γ on its band (:func:`~fdsc.synthesis.synthesize`;
+        :func:`~fdsc.synthesis.synthesize_hinf` for the entire range) and stabilizes the plant.
+
+        Parameters
+        ----------
+        plant : Plant, control.StateSpace or tuple
+            The open-loop plant.
+        bands : sequence of Band
+            Ω_i of each mode (real Ψ: LF, HF or entire).
+        in_band : int
+            Index of the in-band mode (0-based).
+        Q : sequence of (n, n) array_like, optional
+            Given Q's to certify (default: designed by paper Remark 4).
+        gamma_tol : float, optional
+            γ_tol of paper Remark 4.
+        n_disturbances : int, optional
+            Number of disturbance inputs of a python-control ``StateSpace`` plant.
+        **synthesis_options
+            Passed to :func:`~fdsc.synthesis.synthesize` (``epsilon``, ``sigma``, ``margin``).
+
+        Returns
+        -------
+        FDSC
+
+        Raises
+        ------
+        InfeasibleError
+            If a synthesis or Theorem 1 is infeasible.
+        """
+        plant = as_plant(plant, n_disturbances=n_disturbances)
+        bands = _bands(bands)
+        results = tuple(synthesize_hinf(plant) if b.kind == "EF" else
+                        synthesize(plant, b, **synthesis_options) for b in bands)
+        made = cls.from_gains(plant, [r.K for r in results], bands, in_band, Q=Q, gamma_tol=gamma_tol)
+        return cls(made.plant, made.gains, made.bands, made.in_band, made.certificate, results)
+
+    @property
+    def n_modes(self):
+        """Number of modes I."""
+        return len(self.gains)
+
+    @property
+    def Q(self):
+        """The law's Q_i (from the certificate)."""
+        return tuple(np.asarray(q) for q in self.certificate.Q)
+
+    @property
+    def gammas(self):
+        """γ_i certified by Theorem 1."""
+        return np.asarray(self.certificate.gammas)
+
+    @property
+    def modes(self):
+        """Closed loops of the modes (tuple of :class:`~fdsc.plant.LTISystem`)."""
+        return tuple(self.plant.closed_loop(K) for K in self.gains)
+
+    def mode(self, i):
+        """Closed loop of mode ``i`` alone (the fixed-gain controller K_i).
+
+        Parameters
+        ----------
+        i : int
+            Mode index (0-based).
+
+        Returns
+        -------
+        LTISystem
+        """
+        i = _in_band(i, self.n_modes)
+        return self.plant.closed_loop(self.gains[i])
+
+    def simulate(self, d, t, *, x0=None, law="previous", sigma0=0, kernel="numba", **options):
+        """Simulate the switched closed loop under the law (paper eq. (31)) with this design's Q's.
+
+        Parameters
+        ----------
+        d : Sinusoids or Piecewise
+            The scalar disturbance.
+        t : (N,) array_like
+            Uniform time grid (see :func:`~fdsc.simulate.time_grid`).
+        x0 : (n,) array_like, optional
+            Initial state (default 0).
+        law : {"previous", "candidate"}, optional
+            How ẋ enters the law (see :data:`fdsc.simulate.LAWS`).
+        sigma0 : int, optional
+            Mode active before t = 0.
+        kernel : {"numba", "numpy"}, optional
+            Compiled kernel or its NumPy reference.
+        **options
+            Further keyword arguments of :func:`~fdsc.simulate.simulate` (``max_memory``).
+
+        Returns
+        -------
+        SimResult
+        """
+        return simulate(list(self.modes), d, t, x0=x0, law_bands=list(self.bands),
+                        law_Q=list(self.Q), law=law, sigma0=sigma0, kernel=kernel, **options)
+

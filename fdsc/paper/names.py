@@ -1,0 +1,29 @@
+"""The paper's names in one place: gains, bands, controllers (the map between them).
+"""
+
+
+__all__ = [
+    "GAIN_ORDER",
+    "BAND_ORDER",
+    "GAIN_BANDS",
+    "CONTROLLERS",
+    "CONTROLLER_GAINS",
+]
+
+
+GAIN_ORDER = ("K_f1", "K_f2", "K_f3", "K_e")
+
+
+BAND_ORDER = ("LF", "MF", "HF", "EF")
+
+
+#: Printed gain → the band it was designed for.
+GAIN_BANDS = {"K_f1": "LF", "K_f2": "MF", "K_f3": "HF", "K_e": "EF"}
+
+
+#: Controllers compared in paper Figs. 4-8 (the paper's names).
+CONTROLLERS = ("PassC-EF", "PassC-LF", "PassC-HF", "FDSC")
+
+
+#: The printed gain of each fixed-gain controller.
+CONTROLLER_GAINS = {"PassC-EF": "K_e", "PassC-LF": "K_f1", "PassC-HF": "K_f3"}

@@ -1,0 +1,68 @@
+"""The one verdict rule of the reproduction record.
+"""
+
+import numpy as np
+
+__all__ = [
+    "VERDICTS",
+    "VERDICT_RULES",
+    "VERDICT_CLOSE_RTOL",
+    "verdict",
+]
+
+
+#: Relative difference up to which a number that misses the printed precision is "close".
+VERDICT_CLOSE_RTOL = 1e-2
+
+
+#: The verdicts of the record, from best to worst, then ``new`` (nothing printed to compare with).
+VERDICTS = ("match", "close", "differs", "not reproducible", "new")
+
+
+#: The verdict rules, stated once (the book's introduction renders this text).
+VERDICT_RULES = {
+    "match": "equal to the printed number to its printed precision (half a unit in its last "
+             "printed decimal), entry by entry for matrices",
+    "close": "not a match, but within 1 % relative (Frobenius norm for matrices) of the quantity "
+             "the paper says it printed; never given to a quantity picked, after the fact, as the "
+             "nearest of several candidates",
+    "differs": "the quantity the paper says it printed, recomputed, is further than 1 % away",
+    "not reproducible": "the paper prints a number but not what is needed to recompute it (an "
+                        "unprinted parameter), or no quantity tried gives it to its printed "
+                        "precision",
+    "new": "a quantity the paper does not print (our finding); there is nothing to compare with",
+}
+
+
+def verdict(paper, ours, decimals=4, *, after_the_fact=False):
+    """Compare a printed number (or matrix) with a recomputed one, by :data:`VERDICT_RULES`.
+
+    Parameters
+    ----------
+    paper, ours : float or array_like
+        The printed and the recomputed value (same shape).
+    decimals : int, optional
+        Decimals printed in the paper.
+    after_the_fact : bool, optional
+        ``ours`` was picked as the nearest of several candidates after seeing ``paper``: it can
+        be a ``match`` (equal to the printed precision) but never ``close``.
+
+    Returns
+    -------
+    {"match", "close", "differs"}
+
+    Examples
+    --------
+    >>> verdict(0.4025, 0.40252), verdict(0.4025, 0.4028), verdict(0.1714, 1.605)
+    ('match', 'close', 'differs')
+    >>> verdict(0.3443, 0.3426, after_the_fact=True)
+    'differs'
+    """
+    paper, ours = np.asarray(paper, dtype=float), np.asarray(ours, dtype=float)
+    if paper.shape != ours.shape:
+        raise ValueError(f"paper and ours must have one shape, found {paper.shape} and {ours.shape}")
+    if np.all(np.abs(paper - ours) <= 0.5 * 10.0 ** (-decimals) * (1 + 1e-9)):
+        return "match"
+    if not after_the_fact and np.linalg.norm(paper - ours) <= VERDICT_CLOSE_RTOL * np.linalg.norm(paper):
+        return "close"
+    return "differs"
