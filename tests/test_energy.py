@@ -16,6 +16,7 @@ from fdsc.simulate import simulate, time_grid
 A = np.array([[-1.0, 2.0], [-2.0, -0.5]])
 B = np.array([[1.0], [0.5]])
 Q = np.array([[2.0, 0.3], [0.3, 1.0]])
+TONE = Sinusoids([1.0], [1.0])
 SYS = LTISystem(A, B, np.eye(2), np.zeros((2, 1)))
 
 
@@ -96,10 +97,10 @@ def test_mf_power_of_real_signals_is_negative():
          DimensionError, r"Q: expected shape \(2, 2\)"),
         (lambda: instantaneous_power(np.zeros((3, 2)), np.zeros((4, 2)), Band.lf(1.0), Q), DimensionError,
          r"xdot: expected shape \(3, 2\) but found \(4, 2\)"),
-        (lambda: steady_state_power((-A, B, np.eye(2), np.zeros((2, 1))), Sinusoids([1.0], [1.0]), Band.lf(1.0), Q),
+        (lambda: steady_state_power((-A, B, np.eye(2), np.zeros((2, 1))), TONE, Band.lf(1.0), Q),
          UnstableError, "sys is not stable: A has the eigenvalue .* needs a Hurwitz A"),
-        (lambda: steady_state_power(LTISystem(A, np.eye(2), np.eye(2), np.zeros((2, 2))), Sinusoids([1.0], [1.0]),
-                                    Band.lf(1.0), Q), DimensionError, "one disturbance input"),
+        (lambda: steady_state_power((A, np.eye(2), np.eye(2), np.zeros((2, 2))), TONE, Band.lf(1.0), Q),
+         DimensionError, "one disturbance input"),
     ],
 )
 def test_bad_energy_inputs(call, exc, match):

@@ -76,7 +76,7 @@ def test_library_module_holds_no_printed_number(path):
     printed = _printed_numbers()
     as_literal = sorted(consts & printed)
     in_text = sorted(v for v in printed if isinstance(v, float) and repr(v) in text)
-    assert as_literal == [] and in_text == [], f"{path.name} holds numbers of the paper: {as_literal or in_text}"
+    assert as_literal == [] and in_text == [], f"{path.name} holds paper numbers: {as_literal or in_text}"
 
 
 def test_importing_the_whole_library_loads_nothing_of_the_paper_layer():

@@ -1,0 +1,90 @@
+"""A disk cache for the chapters' results, so that a book build computes each result once.
+
+The book build sets ``FDSC_CACHE_DIR`` to a folder inside its output (``book/_ext/offline.py``),
+and the kernels that execute the chapters inherit it: the introduction's status table, built
+from the record, and the chapters then share one computation of every result. Without the
+variable (tests, the command line, a user's session) nothing is cached.
+
+A cached value is keyed by the function, its arguments (plain values only: numbers, strings,
+booleans, None and tuples of them; anything else bypasses the cache) and a fingerprint of the
+fdsc sources, the paper's data and the versions of the numerical packages, so an edit to the
+code never returns a stale value.
+"""
+
+import functools
+import hashlib
+import os
+import pickle
+import tempfile
+from importlib.metadata import PackageNotFoundError, version
+from pathlib import Path
+
+__all__ = ["cached", "fingerprint", "CACHE_ENV"]
+
+#: Environment variable naming the cache folder (unset: no caching).
+CACHE_ENV = "FDSC_CACHE_DIR"
+_PLAIN = (int, float, str, bool, type(None))
+
+
+@functools.cache
+def fingerprint():
+    """Hash of every fdsc source file, the paper's data and the numerical packages' versions.
+
+    Returns
+    -------
+    str
+        Hex digest.
+    """
+    root = Path(__file__).resolve().parent.parent
+    h = hashlib.sha256()
+    for path in sorted(root.rglob("*")):
+        if path.suffix in (".py", ".json") and "__pycache__" not in path.parts:
+            h.update(str(path.relative_to(root)).encode())
+            h.update(path.read_bytes())
+    for pkg in ("numpy", "scipy", "cvxpy", "clarabel", "numba"):
+        try:
+            h.update(f"{pkg}={version(pkg)}".encode())
+        except PackageNotFoundError:
+            h.update(f"{pkg}=none".encode())
+    return h.hexdigest()
+
+
+def _plain(value):
+    if isinstance(value, tuple):
+        return all(_plain(v) for v in value)
+    return isinstance(value, _PLAIN)
+
+
+def cached(fn):
+    """Decorate a result function so that its value is kept in ``$FDSC_CACHE_DIR`` if set.
+
+    Parameters
+    ----------
+    fn : callable
+        A deterministic function of plain arguments returning a picklable value.
+
+    Returns
+    -------
+    callable
+        The wrapped function (same signature; ``__wrapped__`` is the original).
+    """
+    @functools.wraps(fn)
+    def wrapper(*args, **kwargs):
+        folder = os.environ.get(CACHE_ENV)
+        if not folder or not _plain(args) or not _plain(tuple(kwargs.values())):
+            return fn(*args, **kwargs)
+        key = hashlib.sha256(repr((fingerprint(), fn.__module__, fn.__qualname__, args,
+                                   sorted(kwargs.items()))).encode()).hexdigest()[:24]
+        path = Path(folder) / f"{fn.__module__}.{fn.__qualname__}-{key}.pickle"
+        if path.is_file():
+            with path.open("rb") as fh:
+                return pickle.load(fh)
+        value = fn(*args, **kwargs)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        # write then rename, so that a reader never sees half a file
+        with tempfile.NamedTemporaryFile(dir=path.parent, delete=False) as fh:
+            pickle.dump(value, fh)
+        os.replace(fh.name, path)
+        return value
+
+    return wrapper

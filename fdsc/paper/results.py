@@ -1,0 +1,96 @@
+"""What a chapter contributes to the reproduction record: entries and figure data.
+
+Each chapter module returns small typed results (frozen dataclasses); a result that carries
+record entries has ``to_record()`` returning a :class:`RecordPart`, and
+:func:`fdsc.paper.record.reproduction_record` adds the parts up.
+"""
+
+from dataclasses import dataclass, field
+
+from .verdict import VERDICTS
+
+__all__ = ["RecordPart", "entry"]
+
+_REQUIRED = ("id", "source", "paper", "recomputed", "verdict", "note")
+
+
+def entry(id, source, paper, recomputed, verdict, note, **extra):  # noqa: A002  (the record's key)
+    """One record entry ``{"id", "source", "paper", "recomputed", "verdict", "note", ...}``.
+
+    Parameters
+    ----------
+    id : str
+        Identifier of the entry (fixed once published: the issues and the book refer to it).
+    source : str
+        Where the paper prints the quantity ("Sec. IV, K_{f_1}"), or what it is derived from.
+    paper : object
+        The printed value (None when the paper prints nothing: verdict "new").
+    recomputed : object
+        Our value.
+    verdict : str
+        One of :data:`fdsc.paper.verdict.VERDICTS`.
+    note : str
+        Why the verdict, in a sentence or two.
+    **extra
+        Further keys (per-item verdicts, statuses, eigenvalues).
+
+    Returns
+    -------
+    dict
+
+    Raises
+    ------
+    ValueError
+        If the verdict is unknown or the id is empty.
+
+    Examples
+    --------
+    >>> entry("x", "Sec. IV", 1.0, 1.0, "match", "equal")["verdict"]
+    'match'
+    """
+    if verdict not in VERDICTS:
+        raise ValueError(f"verdict must be one of {VERDICTS}, but found {verdict!r}")
+    if not isinstance(id, str) or not id:
+        raise ValueError(f"id must be a non-empty string, but found {id!r}")
+    return {"id": id, "source": source, "paper": paper, "recomputed": recomputed,
+            "verdict": verdict, "note": note, **extra}
+
+
+@dataclass(frozen=True)
+class RecordPart:
+    """Entries and figure data that one result contributes to the record.
+
+    Parameters
+    ----------
+    entries : tuple of dict
+        Record entries (see :func:`entry`), in the order the record lists them.
+    figures : dict
+        Figure data keyed by figure id (see :data:`fdsc.paper.record.FIGURE_IDS`).
+
+    Examples
+    --------
+    >>> a = RecordPart((entry("a", "s", None, 1, "new", "n"),))
+    >>> b = RecordPart(figures={"f": {"x": [1]}})
+    >>> [e["id"] for e in (a + b).entries], list((a + b).figures)
+    (['a'], ['f'])
+    """
+
+    entries: tuple = ()
+    figures: dict = field(default_factory=dict)
+
+    def __post_init__(self):
+        entries = tuple(self.entries)
+        for e in entries:
+            missing = [k for k in _REQUIRED if k not in e]
+            if missing:
+                raise ValueError(f"entries: entry {e.get('id')!r} lacks {missing}")
+        object.__setattr__(self, "entries", entries)
+
+    def __add__(self, other):
+        """Concatenate the entries and merge the figures (ids and figure keys must be unique)."""
+        ids = {e["id"] for e in self.entries}
+        dup = ids & {e["id"] for e in other.entries}
+        dup_fig = set(self.figures) & set(other.figures)
+        if dup or dup_fig:
+            raise ValueError(f"other: duplicate entry ids {sorted(dup)} or figures {sorted(dup_fig)}")
+        return RecordPart(self.entries + other.entries, {**self.figures, **other.figures})
