@@ -1,11 +1,12 @@
 """Compare two reproduction records number by number.
 
-    python tests/compare_records.py OLD.json NEW.json [--rtol 1e-9]
+    python tests/compare_records.py OLD.json NEW.json [--rtol 1e-9] [--allow-new]
 
 Every entry (matched by id) and every figure is compared leaf by leaf: numbers to ``rtol``
 relative (``|a − b| ≤ rtol · max(|a|, |b|)``; two zeros are equal), strings and booleans exactly,
 and the structure (keys, list lengths) exactly. The environment (versions, timings) is ignored.
-Exit status 0 if the records agree, 1 otherwise, with one line per difference.
+With ``--allow-new``, entries and figures present only in NEW (additions) are listed but do not
+count as differences. Exit status 0 if the records agree, 1 otherwise, with one line per difference.
 """
 
 import argparse
@@ -39,7 +40,7 @@ def _compare(a, b, path, rtol, out):
         out.append(f"{path}: {a!r} != {b!r}")
 
 
-def compare_records(old, new, rtol=1e-9):
+def compare_records(old, new, rtol=1e-9, *, allow_new=False):
     """Differences between two records (dicts as written by ``python -m fdsc reproduce``).
 
     Parameters
@@ -48,6 +49,9 @@ def compare_records(old, new, rtol=1e-9):
         Records with ``entries`` (list of dict with ``id``) and ``figures`` (dict).
     rtol : float, optional
         Relative tolerance for numbers.
+    allow_new : bool, optional
+        Ignore entries and figures that only ``new`` has (additions); everything ``old`` has
+        must still be there and equal.
 
     Returns
     -------
@@ -65,8 +69,12 @@ def compare_records(old, new, rtol=1e-9):
     out = []
     old_e = {e["id"]: e for e in old["entries"]}
     new_e = {e["id"]: e for e in new["entries"]}
+    new_f = new["figures"]
+    if allow_new:
+        new_e = {k: v for k, v in new_e.items() if k in old_e}
+        new_f = {k: v for k, v in new_f.items() if k in old["figures"]}
     _compare(old_e, new_e, "entries", rtol, out)
-    _compare(old["figures"], new["figures"], "figures", rtol, out)
+    _compare(old["figures"], new_f, "figures", rtol, out)
     return out
 
 
@@ -76,7 +84,7 @@ def main(argv=None):
     Parameters
     ----------
     argv : list of str, optional
-        ``OLD NEW [--rtol R]`` (default ``sys.argv[1:]``).
+        ``OLD NEW [--rtol R] [--allow-new]`` (default ``sys.argv[1:]``).
 
     Returns
     -------
@@ -87,13 +95,19 @@ def main(argv=None):
     parser.add_argument("old")
     parser.add_argument("new")
     parser.add_argument("--rtol", type=float, default=1e-9)
+    parser.add_argument("--allow-new", action="store_true",
+                        help="entries and figures only NEW has are additions, not differences")
     args = parser.parse_args(argv)
     with open(args.old, encoding="utf-8") as fh:
         old = json.load(fh)
     with open(args.new, encoding="utf-8") as fh:
         new = json.load(fh)
-    diffs = compare_records(old, new, args.rtol)
+    diffs = compare_records(old, new, args.rtol, allow_new=args.allow_new)
     n_old = len(old["entries"])
+    added = sorted({e["id"] for e in new["entries"]} - {e["id"] for e in old["entries"]})
+    added += sorted(f"figure {k}" for k in set(new["figures"]) - set(old["figures"]))
+    if added:
+        print(f"only in {args.new}: {', '.join(added)}")
     for line in diffs:
         print(line)
     print(f"{len(diffs)} differences at rtol={args.rtol:g} ({n_old} entries, "

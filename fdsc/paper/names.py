@@ -8,6 +8,7 @@ __all__ = [
     "GAIN_BANDS",
     "CONTROLLERS",
     "CONTROLLER_GAINS",
+    "FIGURE_IDS",
 ]
 
 
@@ -27,3 +28,8 @@ CONTROLLERS = ("PassC-EF", "PassC-LF", "PassC-HF", "FDSC")
 
 #: The printed gain of each fixed-gain controller.
 CONTROLLER_GAINS = {"PassC-EF": "K_e", "PassC-LF": "K_f1", "PassC-HF": "K_f3"}
+
+
+#: The record's figure entries, named by content, with the number of the paper figure each
+#: reproduces (numbers of the compiled tex, whose Fig. 2 is the code-availability box).
+FIGURE_IDS = {"sigma_max": 3, "lf_outputs": 4, "hf_outputs": 5, "hf_l2": 6}

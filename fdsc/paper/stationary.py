@@ -17,9 +17,11 @@ from .data import (
     paper_gains,
     run_controller,
 )
-from .names import CONTROLLER_GAINS, CONTROLLERS
+from .names import CONTROLLER_GAINS, CONTROLLERS, FIGURE_IDS
+from .results import RecordPart
 
 __all__ = [
+    "record_part",
     "stationary_runs",
     "step_halving",
 ]
@@ -102,3 +104,32 @@ def step_halving(kind, *, horizon=100.0, dt=STATIONARY_DT):
                      "rel_change": abs(e2 - e1) / abs(e1), "switches_dt": int(s1.switch_times.size),
                      "switches_dt2": int(s2.switch_times.size)})
     return rows
+
+
+def record_part():
+    """Record figures lf_outputs, hf_outputs (paper Figs. 4 and 5: energies and switch counts) and
+    hf_l2 (paper Fig. 6: the L2-induced norm).
+
+    Returns
+    -------
+    RecordPart
+    """
+    figures = {}
+    for fig, kind in (("lf_outputs", "LF"), ("hf_outputs", "HF")):
+        runs = stationary_runs(kind)
+        figures[fig] = {"paper_figure": FIGURE_IDS[fig], "disturbance": kind,
+                        "horizon": STATIONARY_HORIZON, "dt": STATIONARY_DT,
+                        "energy": {k: v for k, v in runs["energy"].items() if k != "FDSC (our Q)"},
+                        "energy_fdsc_our_q": runs["energy"]["FDSC (our Q)"],
+                        "switches": runs["switches"],
+                        "units": {"horizon": "s", "dt": "s",
+                                  "energy": "integral of z'z over [0, horizon] (z as printed, s)"}}
+        if kind == "HF":
+            figures["hf_l2"] = {
+                "paper_figure": FIGURE_IDS["hf_l2"], "horizon": STATIONARY_HORIZON,
+                "l2_induced_norm_final": {k: float(v[-1]) for k, v in runs["l2"].items()},
+                "l2_induced_norm_steady_state": runs["l2_steady"],
+                "units": {"horizon": "s", "l2_induced_norm": "1 (sqrt of an energy ratio)"},
+                "note": "running ratio from rest at the horizon; steady state = its limit for the "
+                        "fixed gains (closed form); FDSC has no closed form"}
+    return RecordPart(figures=figures)

@@ -11,11 +11,15 @@ from ..simulate import simulate, time_grid
 from ..switching import Theorem1Result, certify_q, design_q
 from .data import (
     STATIONARY_DT,
+    our_q,
+    paper_data,
     paper_disturbance,
     paper_modes,
 )
+from .results import RecordPart
 
 __all__ = [
+    "record_part",
     "theorem1_table",
     "autonomous_stability",
     "lyapunov_jumps",
@@ -182,3 +186,36 @@ def autonomous_lyapunov_jumps(result, n_initial=40, *, horizon=60.0, dt=1e-3, se
             "frac_up": float(np.mean(ratios > 1)) if ratios.size else 0.0,
             "n_switches": int(ratios.size), "n_runs": n_initial, "horizon": float(horizon),
             "final_ratio": np.array(final)}
+
+
+def record_part():
+    """Record entries Q_1, Q_2 (the law's Q's) and thm1_gammas (what Theorem 1 certifies).
+
+    Returns
+    -------
+    RecordPart
+    """
+    sw = paper_data("switching")
+    ours = our_q()
+    table = theorem1_table()
+    paper_row = table[0]
+    entries = []
+    for k, name in enumerate(("Q_1", "Q_2")):
+        entries.append({
+            "id": name, "source": f"Sec. IV, {name}", "paper": sw[name]["value"],
+            "recomputed": ours.Q[k], "verdict": "not reproducible",
+            "note": ("the paper prints the Q's but not gamma_tol nor the Q's scale, which the "
+                     "Remark 4 design needs (Q enters Theorem 1 only through differences); ours: "
+                     "Remark 4 design with gamma_tol = "
+                     f"{table[2]['gamma_tol']:g} (in-band mode PassC-HF): it reaches gamma_2 = "
+                     f"{ours.gammas[1]:.4f} by driving Q_1 to the margin; the printed Q's certify "
+                     f"only gamma = ({paper_row['gamma_1']:.4g}, {paper_row['gamma_2']:.4g}).")})
+    entries.append({
+        "id": "thm1_gammas", "source": "Theorem 1, paper Remark 4 (gammas not printed)",
+        "paper": None,
+        "recomputed": {"paper_Q": [paper_row["gamma_1"], paper_row["gamma_2"]],
+                       "ours": {f"gamma_tol={r['gamma_tol']:g}": [r["gamma_1"], r["gamma_2"]]
+                                for r in table[1:]}},
+        "verdict": "new",
+        "note": "the paper prints no gammas; these are the values Theorem 1 certifies."})
+    return RecordPart(tuple(entries))

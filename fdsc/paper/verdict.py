@@ -8,6 +8,7 @@ __all__ = [
     "VERDICT_RULES",
     "VERDICT_CLOSE_RTOL",
     "verdict",
+    "worst_verdict",
 ]
 
 
@@ -66,3 +67,23 @@ def verdict(paper, ours, decimals=4, *, after_the_fact=False):
     if not after_the_fact and np.linalg.norm(paper - ours) <= VERDICT_CLOSE_RTOL * np.linalg.norm(paper):
         return "close"
     return "differs"
+
+
+def worst_verdict(verdicts):
+    """The worst of several verdicts, in the order of :data:`VERDICTS` (``new`` counts as worst).
+
+    Parameters
+    ----------
+    verdicts : iterable of str
+        Verdicts from :data:`VERDICTS`.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> worst_verdict(["match", "differs", "close"])
+    'differs'
+    """
+    return max(verdicts, key=VERDICTS.index)
