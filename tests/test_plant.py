@@ -3,23 +3,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from fdsc import DimensionError, LTISystem, Plant
-from fdsc.paper.data import aircraft, paper_bands, paper_data, paper_gains
-
-
-def test_aircraft_matches_printed_matrices():
-    p = aircraft()
-    # reference: Sec. VI, A_long and B^u_long as printed
-    assert_allclose(p.A, [[-1.175, 0.9871], [-8.458, -0.8776]], atol=0)
-    assert_allclose(p.B2, [[-0.194, -0.03593], [-19.29, -3.803]], atol=0)
-    assert p.B1.shape == (2, 1) and p.C.shape == (3, 2) and p.D2.shape == (3, 2)
-
-
-def test_every_data_entry_has_a_source():
-    for name in ("aircraft", "controllers", "switching", "simulation"):
-        for key, entry in paper_data(name).items():
-            if key.startswith("_"):
-                continue
-            assert "source" in entry and entry["source"], (name, key)
+from fdsc.paper.data import aircraft, paper_gains
 
 
 def test_closed_loop_formula():
@@ -32,21 +16,12 @@ def test_closed_loop_formula():
     assert_allclose(cl.D, p.D1, atol=0)
 
 
-def test_printed_gains_stabilize():
-    p = aircraft()
-    for name, K in paper_gains().items():
-        assert p.closed_loop(K).is_hurwitz(), name
-
-
-def test_paper_bands():
-    b = paper_bands()
-    assert (b["LF"].upper, b["MF"].lower, b["MF"].upper, b["HF"].lower) == (1.0, 1.0, 10.0, 10.0)
-
 
 def test_arrays_are_read_only():
     p = aircraft()
     with pytest.raises(ValueError):
         p.A[0, 0] = 1.0
+
 
 
 @pytest.mark.parametrize(
@@ -74,7 +49,3 @@ def test_bad_shapes(make, match):
     with pytest.raises((DimensionError, ValueError), match=match):
         make()
 
-
-def test_missing_data_file():
-    with pytest.raises(ValueError, match="name must be one of .*aircraft"):
-        paper_data("nonexistent")

@@ -3,13 +3,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from fdsc import Band, Sinusoids, dominance_degree, localized_dominance
-from fdsc.paper.data import hf_disturbance, lf_disturbance, mixed_disturbance, piecewise_disturbance
-
-
-def test_paper_disturbances():
-    t = np.array([0.3, 1.7])
-    assert_allclose(lf_disturbance()(t), np.sin(0.1 * t) + np.sin(0.2 * t) + np.sin(0.3 * t))
-    assert_allclose(hf_disturbance()(t), np.sin(100 * t) + np.sin(200 * t) + np.sin(300 * t))
+from fdsc.paper.data import lf_disturbance, mixed_disturbance, piecewise_disturbance
 
 
 def test_derivative_matches_finite_difference():
@@ -17,6 +11,7 @@ def test_derivative_matches_finite_difference():
     t = np.linspace(0, 5, 11)
     h = 1e-6
     assert_allclose(d.derivative(t), (d(t + h) - d(t - h)) / (2 * h), rtol=1e-6, atol=1e-6)
+
 
 
 @pytest.mark.parametrize("rho", [0.0, 0.1, 0.25, 0.5])
@@ -29,10 +24,12 @@ def test_mixed_dominance_closed_form_and_fft(rho):
     assert_allclose(dominance_degree(mixed_disturbance(rho)(t), 2e-3, hf), exact, atol=1e-4)
 
 
+
 def test_power_of_sum_of_sinusoids():
     d = Sinusoids([2.0, 1.0], [1.0, 3.0])
     t = np.linspace(0, 2000 * np.pi, 2_000_001)
     assert_allclose(np.mean(d(t) ** 2), d.power(), rtol=1e-4)
+
 
 
 def test_piecewise_segments():
@@ -42,6 +39,7 @@ def test_piecewise_segments():
     assert list(d.segment_of(t)) == [0, 1, 2, -1]
     assert_allclose(d(t)[1], 0.1 * lf_disturbance()(np.array([550.0]))[0])
     assert d(t)[3] == 0.0
+
 
 
 def test_localized_dominance_tracks_the_segments():
@@ -55,6 +53,7 @@ def test_localized_dominance_tracks_the_segments():
     assert in_lf.any() and in_hf.any()
     assert np.all(loc.alpha[in_lf] > 0.99)
     assert np.all(loc.alpha[in_hf] < 1e-3)
+
 
 
 @pytest.mark.parametrize(
@@ -77,3 +76,4 @@ def test_localized_dominance_tracks_the_segments():
 def test_bad_signal_inputs(call, match):
     with pytest.raises(ValueError, match=match):
         call()
+
