@@ -1,0 +1,60 @@
+"""The per-build cache of chapter results."""
+
+import numpy as np
+import pytest
+
+from fdsc.paper import cache
+from fdsc.paper.cache import CACHE_ENV, cached
+
+CALLS = []
+
+
+@cached
+def _square(x, *, shift=0.0):
+    CALLS.append((x, shift))
+    return np.array([x * x + shift])
+
+
+def test_without_the_variable_nothing_is_cached(monkeypatch):
+    monkeypatch.delenv(CACHE_ENV, raising=False)
+    CALLS.clear()
+    _square(2.0)
+    _square(2.0)
+    assert len(CALLS) == 2
+
+
+def test_with_the_variable_each_argument_set_is_computed_once(monkeypatch, tmp_path):
+    monkeypatch.setenv(CACHE_ENV, str(tmp_path))
+    CALLS.clear()
+    a = _square(3.0)
+    b = _square(3.0)
+    c = _square(3.0, shift=1.0)
+    assert CALLS == [(3.0, 0.0), (3.0, 1.0)]
+    assert a.tolist() == b.tolist() == [9.0] and c.tolist() == [10.0]
+    assert len(list(tmp_path.glob("*.pickle"))) == 2
+
+
+def test_arguments_that_are_not_plain_bypass_the_cache(monkeypatch, tmp_path):
+    monkeypatch.setenv(CACHE_ENV, str(tmp_path))
+    CALLS.clear()
+    _square(np.float64(2.0) * np.ones(1))
+    _square(np.float64(2.0) * np.ones(1))
+    assert len(CALLS) == 2 and list(tmp_path.glob("*.pickle")) == []
+
+
+def test_a_change_of_the_sources_changes_the_key(monkeypatch, tmp_path):
+    monkeypatch.setenv(CACHE_ENV, str(tmp_path))
+    CALLS.clear()
+    _square(5.0)
+    monkeypatch.setattr(cache, "fingerprint", lambda: "another version of the code")
+    _square(5.0)
+    assert len(CALLS) == 2
+
+
+def test_fingerprint_is_stable():
+    assert cache.fingerprint() == cache.fingerprint() and len(cache.fingerprint()) == 64
+
+
+@pytest.mark.parametrize("value", [1, 1.5, "a", None, True, (1, ("b", 2.0))])
+def test_plain_values(value):
+    assert cache._plain((value,))
