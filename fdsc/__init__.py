@@ -6,6 +6,11 @@ A library for any plant and any frequency ranges, after Zhang, Heiland, Benner a
 synthesis, the FD-EEF/FD-EPF, Theorem 1 (certify and design the law's Q's), an exact simulator
 for switched loops, and the :class:`FDSC` design object. The paper's reproduction lives in the
 separate layer :mod:`fdsc.paper`, which this package never imports.
+
+Docstrings cite the paper as "paper eq. (N)" with the numbering of the compiled paper: the system
+is paper eq. (6), the LMI of Lemma 1 paper eq. (7), the plant paper eq. (10), the FD-EEF and
+FD-EPF paper eqs. (19)-(20) and (28)-(29), the switching law paper eq. (31) and Theorem 1 paper
+eqs. (33)-(34). Frequencies are in rad/s, times in s.
 """
 
 from .bands import PHI, Band, band_from_spec

@@ -7,24 +7,26 @@ library free of any import of the paper layer.
 """
 
 import sys
-from importlib.metadata import entry_points
+from importlib.metadata import EntryPoint, entry_points
 
 __all__ = ["main", "commands"]
 
 
-def commands():
+def commands() -> dict[str, EntryPoint]:
     """The registered commands: ``{name: entry point}`` of the group ``fdsc.commands``.
 
     Returns
     -------
-    dict
-        Entry points by command name, sorted by name.
+    dict of str to importlib.metadata.EntryPoint
+        Entry points by command name, sorted by name (empty if fdsc is not installed).
     """
     return {ep.name: ep for ep in sorted(entry_points(group="fdsc.commands"), key=lambda e: e.name)}
 
 
-def main(argv=None):
+def main(argv: list[str] | None = None) -> int:
     """Run ``python -m fdsc COMMAND [ARGS]``.
+
+    Without a command, or with ``-h``/``--help``, print the usage and the registered commands.
 
     Parameters
     ----------
@@ -34,7 +36,7 @@ def main(argv=None):
     Returns
     -------
     int
-        Exit status of the command; 2 for a missing or unknown command.
+        Exit status of the command; 0 for ``--help``, 2 for a missing or unknown command.
     """
     argv = sys.argv[1:] if argv is None else list(argv)
     found = commands()

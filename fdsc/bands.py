@@ -1,4 +1,4 @@
-"""Frequency ranges (LF, MF, HF, entire) and their gKYP matrices Φ and Ψ.
+"""Frequency ranges (LF, MF, HF, entire) and their gKYP matrices Φ and Ψ (paper Sec. II-A, Lemma 1).
 
 A band is symmetric about ω = 0 for real signals; it is stored as the interval
 ``[lower, upper]`` of non-negative frequencies (rad/s) it contains.
@@ -21,6 +21,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ._validation import as_positive
 from .exceptions import BandError
@@ -40,7 +41,7 @@ _KINDS = ("LF", "MF", "HF", "EF")
 
 @dataclass(frozen=True)
 class Band:
-    """A frequency range of the paper (Sec. II-A).
+    """A frequency range Ω of the paper (Sec. II-A) with the Φ and Ψ of its gKYP lemma.
 
     Use the constructors :meth:`lf`, :meth:`mf`, :meth:`hf`, :meth:`entire`.
 
@@ -51,6 +52,19 @@ class Band:
     lower, upper : float
         Non-negative band limits in rad/s: LF ``[0, ϖ_l]``, MF ``[ϖ_1, ϖ_2]``,
         HF ``[ϖ_h, inf]``, EF ``[0, inf]``.
+
+    Raises
+    ------
+    BandError
+        If ``kind`` is unknown, a limit is not a real number, is NaN, negative or outside
+        :data:`LIMIT_RANGE`, ``lower ≥ upper``, or the limits do not fit the kind (LF and EF
+        start at 0, MF and HF above 0; HF and EF end at inf, LF and MF below it).
+
+    Notes
+    -----
+    The ranges are those of paper Sec. II-A (the displayed LF, MF and HF sets after paper
+    eq. (3)); Ψ is the matrix printed under the LMI of Lemma 1, paper eq. (7). The entire range
+    Ω_e has Ψ = 0, which turns Lemma 1 into the bounded-real lemma.
 
     Examples
     --------
@@ -94,37 +108,113 @@ class Band:
 
     # -- constructors -------------------------------------------------------------
     @classmethod
-    def lf(cls, w_l):
-        """Low-frequency band ``|ω| ≤ w_l`` (rad/s, ``w_l > 0``)."""
+    def lf(cls, w_l: float) -> "Band":
+        """Low-frequency band Ω_l: ``|ω| ≤ w_l``.
+
+        Parameters
+        ----------
+        w_l : float
+            Upper limit ϖ_l in rad/s (> 0, within :data:`LIMIT_RANGE`).
+
+        Returns
+        -------
+        Band
+            The band ``[0, w_l]`` of kind ``"LF"``.
+
+        Raises
+        ------
+        BandError
+            If ``w_l`` is not a positive finite number within :data:`LIMIT_RANGE`.
+
+        Examples
+        --------
+        >>> Band.lf(1.0).label
+        'LF [0, 1] rad/s'
+        """
         return cls("LF", 0.0, _limit("w_l", w_l))
 
     @classmethod
-    def mf(cls, w_1, w_2):
-        """Middle-frequency band ``w_1 ≤ |ω| ≤ w_2`` (rad/s, ``0 < w_1 < w_2``)."""
+    def mf(cls, w_1: float, w_2: float) -> "Band":
+        """Middle-frequency band Ω_m: ``w_1 ≤ |ω| ≤ w_2``.
+
+        Parameters
+        ----------
+        w_1, w_2 : float
+            Lower and upper limits ϖ_1 < ϖ_2 in rad/s (> 0, within :data:`LIMIT_RANGE`).
+
+        Returns
+        -------
+        Band
+            The band ``[w_1, w_2]`` of kind ``"MF"``; its Ψ is complex.
+
+        Raises
+        ------
+        BandError
+            If a limit is not a positive finite number within :data:`LIMIT_RANGE`, or
+            ``w_1 ≥ w_2``.
+
+        Examples
+        --------
+        >>> Band.mf(1.0, 10.0).psi[0, 1]
+        np.complex128(5.5j)
+        """
         w1, w2 = _limit("w_1", w_1), _limit("w_2", w_2)
         if not w1 < w2:
             raise BandError(f"w_1 must be smaller than w_2, found w_1={w1}, w_2={w2}")
         return cls("MF", w1, w2)
 
     @classmethod
-    def hf(cls, w_h):
-        """High-frequency band ``|ω| ≥ w_h`` (rad/s, ``w_h > 0``)."""
+    def hf(cls, w_h: float) -> "Band":
+        """High-frequency band Ω_h: ``|ω| ≥ w_h``.
+
+        Parameters
+        ----------
+        w_h : float
+            Lower limit ϖ_h in rad/s (> 0, within :data:`LIMIT_RANGE`).
+
+        Returns
+        -------
+        Band
+            The band ``[w_h, inf]`` of kind ``"HF"``.
+
+        Raises
+        ------
+        BandError
+            If ``w_h`` is not a positive finite number within :data:`LIMIT_RANGE`.
+
+        Examples
+        --------
+        >>> Band.hf(10.0).psi.real
+        array([[   1.,    0.],
+               [   0., -100.]])
+        """
         return cls("HF", _limit("w_h", w_h), math.inf)
 
     @classmethod
-    def entire(cls):
-        """The entire frequency range Ω_e (no restriction; Ψ = 0)."""
+    def entire(cls) -> "Band":
+        """The entire frequency range Ω_e (no restriction; Ψ = 0).
+
+        Returns
+        -------
+        Band
+            The band ``[0, inf]`` of kind ``"EF"``.
+
+        Examples
+        --------
+        >>> bool(Band.entire().contains(1e6))
+        True
+        """
         return cls("EF", 0.0, math.inf)
 
     # -- matrices -------------------------------------------------------------------
     @property
-    def phi(self):
-        """Φ = [[0, 1], [1, 0]] (continuous time)."""
+    def phi(self) -> np.ndarray:
+        """Φ = [[0, 1], [1, 0]] of paper eq. (7) (continuous time), a read-only (2, 2) array."""
         return PHI
 
     @property
-    def psi(self):
-        """Ψ of the gKYP lemma, a complex (2, 2) Hermitian array (Lemma 1)."""
+    def psi(self) -> np.ndarray:
+        """Ψ of the gKYP lemma (paper eq. (7)), a read-only complex (2, 2) Hermitian array."""
         if self.kind == "LF":
             m = [[-1.0, 0.0], [0.0, self.upper**2]]
         elif self.kind == "MF":
@@ -139,18 +229,18 @@ class Band:
         return out
 
     @property
-    def is_complex(self):
+    def is_complex(self) -> bool:
         """True if Ψ has a non-zero imaginary part (the MF band)."""
         return self.kind == "MF"
 
     @property
-    def label(self):
+    def label(self) -> str:
         """Short text label, e.g. ``'LF [0, 1]'``."""
         hi = "∞" if math.isinf(self.upper) else f"{self.upper:g}"
         return f"{self.kind} [{self.lower:g}, {hi}] rad/s"
 
     # -- frequency functions --------------------------------------------------------
-    def weight(self, omega):
+    def weight(self, omega: ArrayLike) -> np.ndarray:
         """Frequency weight ``[jω; 1]* Ψ [jω; 1]`` (real), vectorized over ``omega``.
 
         Positive inside the band (for MF: for positive ω inside), negative outside.
@@ -158,14 +248,34 @@ class Band:
         Parameters
         ----------
         omega : float or array_like
-            Frequencies in rad/s (finite, real).
+            Frequencies in rad/s (finite, real), of any shape.
+
+        Returns
+        -------
+        ndarray
+            The weight, of the shape of ``omega`` (a 0-d value for a scalar).
+
+        Raises
+        ------
+        ValueError
+            If an entry of ``omega`` is NaN, infinite, complex or not numeric.
+
+        Notes
+        -----
+        The closed forms listed in the module docstring are those of the proof of paper
+        Proposition 1 (the display after paper eq. (23)).
+
+        Examples
+        --------
+        >>> Band.hf(10.0).weight([5.0, 20.0])
+        array([-75., 300.])
         """
         w = _omega(omega)
         p = self.psi
         # conj(jω) Ψ12 + Ψ21 jω = 2 ω Im Ψ12 because Ψ is Hermitian
         return p[0, 0].real * w**2 + p[1, 1].real + 2.0 * w * p[0, 1].imag
 
-    def real_weight(self, omega):
+    def real_weight(self, omega: ArrayLike) -> np.ndarray:
         """Weight of ``Re Ψ``, i.e. what a quadratic form in a *real* signal sees.
 
         Equals ``(w(ω) + w(−ω)) / 2``; it coincides with :meth:`weight` except for MF,
@@ -174,18 +284,49 @@ class Band:
         Parameters
         ----------
         omega : float or array_like
-            Frequencies in rad/s (finite, real).
+            Frequencies in rad/s (finite, real), of any shape.
+
+        Returns
+        -------
+        ndarray
+            The weight, of the shape of ``omega`` (a 0-d value for a scalar).
+
+        Raises
+        ------
+        ValueError
+            If an entry of ``omega`` is NaN, infinite, complex or not numeric.
+
+        Examples
+        --------
+        >>> band = Band.mf(1.0, 10.0)
+        >>> float(band.weight(5.0)), float(band.real_weight(5.0))   # in band; −(25 + 10)
+        (20.0, -35.0)
         """
         w = _omega(omega)
         return 0.5 * (self.weight(w) + self.weight(-w))
 
-    def contains(self, omega):
+    def contains(self, omega: ArrayLike) -> np.ndarray:
         """True where ``|omega|`` lies in the band (limits included).
 
         Parameters
         ----------
         omega : float or array_like
-            Frequencies in rad/s (finite, real).
+            Frequencies in rad/s (finite, real), of any shape.
+
+        Returns
+        -------
+        ndarray of bool
+            Of the shape of ``omega`` (a 0-d value for a scalar).
+
+        Raises
+        ------
+        ValueError
+            If an entry of ``omega`` is NaN, infinite, complex or not numeric.
+
+        Examples
+        --------
+        >>> Band.mf(1.0, 10.0).contains([-5.0, 0.5, 10.0])
+        array([ True, False,  True])
         """
         a = np.abs(_omega(omega))
         return (a >= self.lower) & (a <= self.upper)
@@ -218,14 +359,24 @@ def _limit(name, value):
     return x
 
 
-def band_from_spec(spec):
-    """Build a :class:`Band` from a dict as stored in ``data/aircraft.json``.
+def band_from_spec(spec: dict) -> Band:
+    """Build a :class:`Band` from a dict such as the paper layer stores in its data files.
 
     Parameters
     ----------
     spec : dict
         ``{"kind": "LF", "w_l": 1}``, ``{"kind": "MF", "w_1": 1, "w_2": 10}``,
-        ``{"kind": "HF", "w_h": 10}`` or ``{"kind": "EF"}``.
+        ``{"kind": "HF", "w_h": 10}`` or ``{"kind": "EF"}`` (limits in rad/s).
+
+    Returns
+    -------
+    Band
+
+    Raises
+    ------
+    BandError
+        If ``spec`` is not a dict, its kind is unknown, it lacks a limit of its kind, or a
+        limit is invalid (see :meth:`Band.lf`, :meth:`Band.mf`, :meth:`Band.hf`).
 
     Examples
     --------

@@ -6,7 +6,8 @@ For a real state trajectory the quadratic form ``[ẋ; x]* (Ψ ⊗ Q) [ẋ; x]``
     P_t(Ω, Q, t) = ψ11 ẋᵀQẋ + 2 Re ψ12 ẋᵀQx + ψ22 xᵀQx          (instantaneous FD-EPF)
     S(Ω, Q, T_l) = ∫_{T_l} P_t dt,   P_a = S / |T_l|                (FD-EEF, average FD-EPF)
 
-In the frequency domain (Parseval) a component at ω is weighted by the real weight
+(paper eqs. (19)-(20) for the FD-EEF, (28) and (29) for the FD-EPF). In the frequency domain
+(Parseval, paper eq. (23)) a component at ω is weighted by the real weight
 ``w(ω) = Re([jω;1]*Ψ[jω;1])`` (:meth:`fdsc.Band.real_weight`): positive in band, negative out
 of band for LF and HF; negative everywhere for MF.
 """
@@ -14,13 +15,14 @@ of band for LF and HF; negative everywhere for MF.
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy.integrate import quad, simpson
 from scipy.linalg import solve_continuous_lyapunov
 
 from ._validation import as_matrix, as_vector, check_hurwitz, check_type
 from .bands import Band
 from .exceptions import DimensionError
-from .plant import as_system
+from .plant import LTISystem, as_system
 from .signals import Sinusoids
 
 __all__ = [
@@ -35,15 +37,37 @@ __all__ = [
 ]
 
 
-def check_weight(Q, n):
+def check_weight(Q: ArrayLike, n: int) -> np.ndarray:
     """Validate a symmetric positive-definite weight Q of size (n, n) and return it.
+
+    Parameters
+    ----------
+    Q : (n, n) array_like
+        The candidate weight.
+    n : int
+        Number of states: the expected size of Q.
+
+    Returns
+    -------
+    (n, n) ndarray
+        Q as a read-only float array.
 
     Raises
     ------
     DimensionError
         Wrong shape.
     ValueError
-        Not symmetric or not positive definite.
+        Not symmetric (to a relative 1e-12), not positive definite, or not finite and real.
+
+    Examples
+    --------
+    >>> check_weight([[2.0, 0.0], [0.0, 1.0]], 2)
+    array([[2., 0.],
+           [0., 1.]])
+    >>> check_weight([[1.0, 0.0], [0.0, -1.0]], 2)
+    Traceback (most recent call last):
+    ...
+    ValueError: Q must be positive definite; its smallest eigenvalue is -1
     """
     Q = as_matrix("Q", Q, (n, n))
     if not np.allclose(Q, Q.T, rtol=1e-12, atol=1e-12 * max(1.0, np.abs(Q).max())):
@@ -72,20 +96,35 @@ def _state_matrix(sys, what):
     return A
 
 
-def instantaneous_power(x, xdot, band, Q):
+def instantaneous_power(x: ArrayLike, xdot: ArrayLike, band: Band, Q: ArrayLike) -> np.ndarray:
     """Instantaneous FD-EPF ``P_t(Ω, Q, t)`` along a trajectory.
 
     Parameters
     ----------
     x, xdot : (N, n) array_like
-        States and state derivatives at N instants.
+        States and state derivatives at N instants (real).
     band : Band
+        The frequency range Ω (only ``Re Ψ`` acts on real signals).
     Q : (n, n) array_like
         Symmetric positive definite.
 
     Returns
     -------
     (N,) ndarray
+        ``[ẋ; x]ᵀ (Re Ψ ⊗ Q) [ẋ; x]`` at each instant.
+
+    Raises
+    ------
+    DimensionError
+        If ``x`` is not 2-D, ``xdot`` differs from it in shape, or Q is not (n, n).
+    ValueError
+        If Q is not symmetric positive definite, or an entry is not finite and real.
+    TypeError
+        If ``band`` is not a :class:`~fdsc.bands.Band`.
+
+    Notes
+    -----
+    Paper eq. (29); the switching law, paper eq. (31), compares it across modes.
 
     Examples
     --------
@@ -101,20 +140,43 @@ def instantaneous_power(x, xdot, band, Q):
             + p[1, 1] * np.sum(qx * x, axis=1))
 
 
-def fdeef(t, x, xdot, band, Q):
+def fdeef(t: ArrayLike, x: ArrayLike, xdot: ArrayLike, band: Band, Q: ArrayLike) -> float:
     """FD-EEF ``S(Ω, Q, T_l)`` over the sampled window ``[t[0], t[-1]]`` (Simpson's rule).
 
     Parameters
     ----------
     t : (N,) array_like
-        Increasing sample times (uniform spacing recommended; N ≥ 3).
+        Increasing sample times in s (uniform spacing recommended; N ≥ 3).
     x, xdot : (N, n) array_like
+        States and state derivatives at the times ``t``.
     band : Band
+        The frequency range Ω.
     Q : (n, n) array_like
+        Symmetric positive definite.
 
     Returns
     -------
     float
+
+    Raises
+    ------
+    ValueError
+        If ``t`` is not increasing or has fewer than 3 samples, or Q is not symmetric positive
+        definite.
+    DimensionError
+        If ``t`` and ``x`` have different numbers of samples, or the shapes of ``x``, ``xdot``
+        and Q do not fit.
+
+    Notes
+    -----
+    Paper eq. (20), the localized-time FD-EEF.
+
+    Examples
+    --------
+    >>> t = np.linspace(0.0, 2 * np.pi, 2001)
+    >>> x, xd = np.sin(t)[:, None], np.cos(t)[:, None]
+    >>> round(fdeef(t, x, xd, Band.lf(2.0), [[1.0]]) / np.pi, 9)   # ∫(4 sin² − cos²) = 3π
+    3.0
     """
     t = as_vector("t", t)
     if t.size < 3 or np.any(np.diff(t) <= 0):
@@ -125,17 +187,38 @@ def fdeef(t, x, xdot, band, Q):
     return float(simpson(p, x=t))
 
 
-def average_power(t, x, xdot, band, Q):
+def average_power(t: ArrayLike, x: ArrayLike, xdot: ArrayLike, band: Band, Q: ArrayLike) -> float:
     """Average FD-EPF ``P_a = S(Ω, Q, T_l) / |T_l|`` over the sampled window.
 
     Parameters
     ----------
-    t, x, xdot, band, Q
-        As for :func:`fdeef`.
+    t : (N,) array_like
+        Increasing sample times in s (uniform spacing recommended; N ≥ 3).
+    x, xdot : (N, n) array_like
+        States and state derivatives at the times ``t``.
+    band : Band
+        The frequency range Ω.
+    Q : (n, n) array_like
+        Symmetric positive definite.
 
     Returns
     -------
     float
+
+    Raises
+    ------
+    ValueError, DimensionError
+        As for :func:`fdeef`.
+
+    Notes
+    -----
+    Paper eq. (28).
+
+    Examples
+    --------
+    >>> t = np.linspace(0.0, 2 * np.pi, 2001)
+    >>> float(round(average_power(t, np.sin(t)[:, None], np.cos(t)[:, None], Band.lf(2.0), [[1.0]]), 9))
+    1.5
     """
     t = as_vector("t", t)
     return fdeef(t, x, xdot, band, Q) / (t[-1] - t[0])
@@ -143,9 +226,11 @@ def average_power(t, x, xdot, band, Q):
 
 @dataclass(frozen=True)
 class PowerSplit:
-    """Steady-state average FD-EPF of a sum of sinusoids and its Remark 1 split.
+    """Steady-state average FD-EPF of a sum of sinusoids and its in-band/out-of-band split.
 
-    Attributes
+    Returned by :func:`steady_state_power`.
+
+    Parameters
     ----------
     total : float
         ``P_a`` (in-band + out-of-band).
@@ -155,6 +240,10 @@ class PowerSplit:
         Contribution of components where the weight is negative (< 0).
     per_component : (K,) ndarray
         Contribution of each sinusoid.
+
+    Notes
+    -----
+    The split of paper Remark 1 (paper eq. (26)), for power instead of energy.
     """
 
     total: float
@@ -163,7 +252,7 @@ class PowerSplit:
     per_component: np.ndarray
 
 
-def steady_state_power(sys, d, band, Q):
+def steady_state_power(sys: LTISystem, d: Sinusoids, band: Band, Q: ArrayLike) -> PowerSplit:
     """Exact steady-state average FD-EPF of ``dx/dt = A x + B d`` for a sum of sinusoids.
 
     For ``d = Σ a_k sin(ω_k t + φ_k)`` with distinct ω_k and A Hurwitz, the steady state is
@@ -178,8 +267,11 @@ def steady_state_power(sys, d, band, Q):
         The system ``dx/dt = A x + B d`` with A Hurwitz and one disturbance input (C and D
         are not used).
     d : Sinusoids
+        The disturbance, with distinct frequencies.
     band : Band
+        The frequency range Ω.
     Q : (n, n) array_like
+        Symmetric positive definite.
 
     Returns
     -------
@@ -189,6 +281,27 @@ def steady_state_power(sys, d, band, Q):
     ------
     UnstableError
         If A is not Hurwitz (no steady state exists).
+    DimensionError
+        If the system has more than one disturbance input, or Q is not (n, n).
+    ValueError
+        If ``d`` repeats a frequency, or Q is not symmetric positive definite.
+    TypeError
+        If ``d`` is not :class:`~fdsc.signals.Sinusoids` or ``band`` not a :class:`Band`.
+
+    Notes
+    -----
+    The limit of the average FD-EPF, paper eq. (28), as the window grows; the proof of paper
+    Theorem 1(3) writes the same sum (the in-band part ``P_a^in`` and out-of-band part
+    ``P_a^out`` after paper eq. (51)).
+
+    Examples
+    --------
+    >>> from fdsc import LTISystem, Sinusoids
+    >>> sys = LTISystem([[-1.0]], [[1.0]], [[1.0]], [[0.0]])
+    >>> ps = steady_state_power(sys, Sinusoids([1.0, 1.0], [0.5, 4.0]), Band.lf(2.0), [[1.0]])
+    >>> # |X|² = 1/(1 + ω²), weight 4 − ω²: 3.75 · 0.8 / 2 and −12 / 17 / 2
+    >>> round(ps.in_band, 12), round(ps.out_of_band, 12)
+    (1.5, -0.352941176471)
     """
     A = _state_matrix(sys, "a steady state")
     n = A.shape[0]
@@ -218,7 +331,7 @@ def _psi_matrix(A, band, Q):
     return p[0, 0] * A.T @ Q @ A + p[0, 1] * (A.T @ Q + Q @ A) + p[1, 1] * Q
 
 
-def fdeef_autonomous(sys, x0, band, Q):
+def fdeef_autonomous(sys: LTISystem, x0: ArrayLike, band: Band, Q: ArrayLike) -> float:
     """Infinite-horizon FD-EEF of ``x = e^{At} x0`` in closed form (a Lyapunov equation).
 
     ``S = ∫₀^∞ [Ax; x]ᵀ (Re Ψ ⊗ Q) [Ax; x] dt = x0ᵀ L x0`` with ``AᵀL + LA + M = 0`` and
@@ -232,6 +345,7 @@ def fdeef_autonomous(sys, x0, band, Q):
     x0 : (n,) array_like
         Initial state (real).
     band : Band
+        The frequency range Ω.
     Q : (n, n) array_like
         Symmetric positive definite.
 
@@ -243,6 +357,21 @@ def fdeef_autonomous(sys, x0, band, Q):
     ------
     UnstableError
         If A is not Hurwitz (the integral diverges).
+    DimensionError
+        If ``x0`` does not have n entries or Q is not (n, n).
+    ValueError
+        If Q is not symmetric positive definite, or an entry is not finite and real.
+
+    Notes
+    -----
+    Paper eq. (19), the infinite-horizon FD-EEF, for the free motion (``d = 0``).
+
+    Examples
+    --------
+    >>> from fdsc import LTISystem
+    >>> sys = LTISystem([[-1.0]], [[1.0]], [[1.0]], [[0.0]])
+    >>> round(fdeef_autonomous(sys, [1.0], Band.lf(2.0), [[1.0]]), 12)   # ∫ 3 e^{−2t} dt
+    1.5
     """
     A = _state_matrix(sys, "the infinite-horizon FD-EEF")
     x0 = as_vector("x0", x0, A.shape[0])
@@ -252,7 +381,7 @@ def fdeef_autonomous(sys, x0, band, Q):
     return float(x0 @ L @ x0)
 
 
-def fdeef_parseval_autonomous(sys, x0, band, Q):
+def fdeef_parseval_autonomous(sys: LTISystem, x0: ArrayLike, band: Band, Q: ArrayLike) -> float:
     """The same FD-EEF through Parseval's theorem, by quadrature over frequency.
 
     With ``X(jω) = (jωI − A)⁻¹ x0`` the transform of ``ẋ`` on [0, ∞) is ``jωX − x0 = AX`` (the
@@ -261,8 +390,14 @@ def fdeef_parseval_autonomous(sys, x0, band, Q):
 
     Parameters
     ----------
-    sys, x0, band, Q
-        As for :func:`fdeef_autonomous`.
+    sys : LTISystem, control.StateSpace or (A, B, C, D)
+        The system whose free motion is weighed (A Hurwitz; B, C, D are not used).
+    x0 : (n,) array_like
+        Initial state (real).
+    band : Band
+        The frequency range Ω.
+    Q : (n, n) array_like
+        Symmetric positive definite.
 
     Returns
     -------
@@ -273,6 +408,23 @@ def fdeef_parseval_autonomous(sys, x0, band, Q):
     UnstableError
         If A is not Hurwitz: the transform of an unstable trajectory does not exist on the
         imaginary axis, and the quadrature would return the value of the stable mirror image.
+    DimensionError
+        If ``x0`` does not have n entries or Q is not (n, n).
+    ValueError
+        If Q is not symmetric positive definite, or an entry is not finite and real.
+
+    Notes
+    -----
+    Paper eq. (23), the frequency-domain form in the proof of Proposition 1, with ``AX`` in
+    place of ``jωX`` (the initial value enters). Adaptive quadrature (``scipy.integrate.quad``)
+    to a relative 1e-11 per interval.
+
+    Examples
+    --------
+    >>> from fdsc import LTISystem
+    >>> sys = LTISystem([[-1.0]], [[1.0]], [[1.0]], [[0.0]])
+    >>> round(fdeef_parseval_autonomous(sys, [1.0], Band.lf(2.0), [[1.0]]), 9)   # = the time domain
+    1.5
     """
     A = _state_matrix(sys, "the Parseval form of the FD-EEF")
     x0 = as_vector("x0", x0, A.shape[0])

@@ -34,6 +34,9 @@ class BandError(FdscError, ValueError):
 class SolverError(FdscError, RuntimeError):
     """An LMI solve failed; ``status`` holds the cvxpy status, ``solver_status`` Clarabel's own.
 
+    The message ends with ``(status: ...)``; the base class ``RuntimeError`` lets callers that
+    know nothing of fdsc catch it.
+
     Parameters
     ----------
     message : str
@@ -43,20 +46,52 @@ class SolverError(FdscError, RuntimeError):
         check that decided without a solve.
     solver_status : str, optional
         Clarabel's status (e.g. ``"InsufficientProgress"``, ``"AlmostSolved"``), when a solve ran.
+
+    Examples
+    --------
+    >>> err = SolverError("band LMI", "solver_error", "InsufficientProgress")
+    >>> str(err), err.solver_status
+    ('band LMI (status: solver_error)', 'InsufficientProgress')
     """
 
-    def __init__(self, message, status, solver_status=None):
+    def __init__(self, message: str, status: str, solver_status: str | None = None):
         super().__init__(f"{message} (status: {status})")
         self.status = status
         self.solver_status = solver_status
 
 
 class InfeasibleError(SolverError):
-    """The solver reported the LMI (or the specification) infeasible."""
+    """The solver reported the LMI (or the specification) infeasible.
+
+    Parameters
+    ----------
+    message : str
+        What was being solved and why it failed.
+    status : str
+        The cvxpy status (e.g. ``"infeasible"``), or a description of the check that decided
+        without a solve.
+    solver_status : str, optional
+        Clarabel's status, when a solve ran.
+
+    Examples
+    --------
+    >>> isinstance(InfeasibleError("Theorem 1", "infeasible"), RuntimeError)
+    True
+    """
 
 
 class VerificationError(SolverError):
-    """The solver reported success but the a-posteriori check of the certificate failed."""
+    """The solver reported success but the a-posteriori check of the certificate failed.
+
+    Parameters
+    ----------
+    message : str
+        What was solved and which check failed.
+    status : str
+        The cvxpy status of the solve (``"optimal"`` or ``"optimal_inaccurate"``).
+    solver_status : str, optional
+        Clarabel's status, when known.
+    """
 
 
 class IterationLimitError(FdscError, RuntimeError):
@@ -67,10 +102,22 @@ class UnstableError(FdscError, ValueError):
     """A system that must be stable (A Hurwitz) is not, or a simulated state diverged.
 
     The message names the offending eigenvalue (or the instant at which the state overflowed).
-    ``eigenvalue`` holds it (``None`` for a diverged simulation).
+
+    Parameters
+    ----------
+    message : str
+        What needs a stable system and which eigenvalue violates it.
+    eigenvalue : complex, optional
+        The eigenvalue with the largest real part, kept as ``eigenvalue`` (``None`` for a
+        diverged simulation).
+
+    Examples
+    --------
+    >>> UnstableError("sys is not stable", 0.5 + 1j).eigenvalue
+    (0.5+1j)
     """
 
-    def __init__(self, message, eigenvalue=None):
+    def __init__(self, message: str, eigenvalue: complex | None = None):
         super().__init__(message)
         self.eigenvalue = eigenvalue
 

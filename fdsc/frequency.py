@@ -14,12 +14,13 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy.optimize import minimize_scalar
 
 from ._validation import as_count, as_positive, as_vector, check_hurwitz, check_type
 from .bands import Band
 from .exceptions import IterationLimitError, SingularFrequencyError
-from .plant import as_system
+from .plant import LTISystem, as_system
 
 __all__ = ["freqresp", "sigma_max", "BandPeak", "band_peak", "DEFAULT_GRID_POINTS",
            "check_no_pole_at", "steady_state_gain"]
@@ -33,17 +34,25 @@ POLE_RTOL = 1e-10
 
 
 
-def check_no_pole_at(A, omega, what="G(jω)"):
-    """Raise :class:`SingularFrequencyError` if ``jω`` is (numerically) an eigenvalue of ``A``
-    for some ω in ``omega``.
+def check_no_pole_at(A: np.ndarray, omega: ArrayLike, what: str = "G(jω)") -> None:
+    """Raise if ``jω`` is (numerically) an eigenvalue of ``A`` for some ω in ``omega``.
+
+    An eigenvalue λ counts as sitting at ω when ``|Re λ|`` and ``|Im λ − ω|`` are both at most
+    ``POLE_RTOL · max(1, |λ|)``.
 
     Parameters
     ----------
     A : (n, n) ndarray
+        Square real matrix (already validated by the caller).
     omega : (k,) array_like
         Frequencies in rad/s.
-    what : str
+    what : str, optional
         What is undefined there (used in the message).
+
+    Raises
+    ------
+    SingularFrequencyError
+        If some ``jω`` is an eigenvalue of ``A``; the message names ω and the eigenvalue.
 
     Examples
     --------
@@ -65,23 +74,33 @@ def check_no_pole_at(A, omega, what="G(jω)"):
                 f"{lam.imag:g}j on the imaginary axis")
 
 
-def freqresp(sys, omega):
+def freqresp(sys: LTISystem, omega: ArrayLike) -> np.ndarray:
     """Frequency response ``G(jω) = C (jωI − A)⁻¹ B + D``.
 
     Parameters
     ----------
-    sys : LTISystem
+    sys : LTISystem, control.StateSpace or (A, B, C, D)
+        The system (any form :func:`~fdsc.plant.as_system` accepts); it need not be stable.
     omega : (k,) array_like
-        Frequencies in rad/s.
+        Frequencies in rad/s (finite, real).
 
     Returns
     -------
     (k, p, m) complex ndarray
+        ``G(jω_k)`` for each frequency.
 
     Raises
     ------
     SingularFrequencyError
         If some ``jω`` is an eigenvalue of A (a pole on the imaginary axis).
+    TypeError
+        If ``sys`` is not a system.
+    ValueError
+        If an entry of ``omega`` is NaN, infinite, complex or not numeric.
+
+    Notes
+    -----
+    The transfer function of paper eq. (6), ``G(s) = C (sI − A)⁻¹ B + D``, on the imaginary axis.
 
     Examples
     --------
@@ -99,18 +118,31 @@ def freqresp(sys, omega):
     return sys.C @ X + sys.D
 
 
-def sigma_max(sys, omega):
+def sigma_max(sys: LTISystem, omega: ArrayLike) -> np.ndarray:
     """Largest singular value ``σ_max(G(jω))`` for each ω.
 
     Parameters
     ----------
-    sys : LTISystem
+    sys : LTISystem, control.StateSpace or (A, B, C, D)
+        The system (any form :func:`~fdsc.plant.as_system` accepts).
     omega : (k,) array_like
-        Frequencies in rad/s.
+        Frequencies in rad/s (finite, real).
 
     Returns
     -------
     (k,) ndarray
+        ``σ_max(G(jω_k))``.
+
+    Raises
+    ------
+    SingularFrequencyError
+        If some ``jω`` is an eigenvalue of A.
+    ValueError
+        If an entry of ``omega`` is NaN, infinite, complex or not numeric.
+
+    Notes
+    -----
+    The quantity bounded on a band by paper eq. (11).
 
     Examples
     --------
@@ -125,9 +157,9 @@ def sigma_max(sys, omega):
 
 @dataclass(frozen=True)
 class BandPeak:
-    """Result of :func:`band_peak`.
+    """Result of :func:`band_peak`: the band peak and where it was found.
 
-    Attributes
+    Parameters
     ----------
     gamma : float
         sup over the band of σ_max(G(jω)).
@@ -135,10 +167,21 @@ class BandPeak:
         Frequency (rad/s) where it is attained; ``inf`` if the supremum is the
         limit σ_max(D) at ω → ∞.
     band : Band
+        The band searched.
     searched_up_to : float
-        Largest frequency on the grid (for infinite bands, the bound above holds beyond).
+        Largest frequency on the grid in rad/s (for infinite bands, the tail bound of the module
+        docstring holds beyond).
     n_evaluations : int
         Number of frequency-response evaluations.
+
+    Examples
+    --------
+    >>> from fdsc import LTISystem
+    >>> sys = LTISystem([[0.0, 1.0], [-1.0, -0.2]], [[0.0], [1.0]], [[1.0, 0.0]], [[0.0]])
+    >>> pk = band_peak(sys, Band.mf(0.5, 2.0))
+    >>> # resonance of 1/(s² + 2ζs + 1), ζ = 0.1: 1/(2ζ sqrt(1 − ζ²)) at ω = sqrt(1 − 2ζ²)
+    >>> round(pk.gamma, 6), round(pk.omega, 6), pk.band.kind
+    (5.025189, 0.989949, 'MF')
     """
 
     gamma: float
@@ -155,18 +198,20 @@ def _grid(lo, hi, n, extra):
     return np.unique(np.concatenate([np.asarray(p, dtype=float) for p in pts]))
 
 
-def band_peak(sys, band, *, n_grid=DEFAULT_GRID_POINTS, xtol=1e-10):
+def band_peak(sys: LTISystem, band: Band, *, n_grid: int = DEFAULT_GRID_POINTS,
+              xtol: float = 1e-10) -> BandPeak:
     """The band peak ``sup_{ω∈Ω} σ_max(G(jω))`` with local refinement.
 
     Parameters
     ----------
-    sys : LTISystem
+    sys : LTISystem, control.StateSpace or (A, B, C, D)
         A stable system (A Hurwitz): the band peak is then the L2 gain for inputs in the band.
     band : Band
+        The frequency range Ω.
     n_grid : int, optional
         Points of the initial logarithmic grid (≥ 10).
     xtol : float, optional
-        Relative tolerance in ω of the local refinement.
+        Tolerance in log ω of the local refinement (> 0).
 
     Returns
     -------
@@ -178,10 +223,15 @@ def band_peak(sys, band, *, n_grid=DEFAULT_GRID_POINTS, xtol=1e-10):
         If A is not Hurwitz (the peak of an unstable loop's frequency response bounds no energy).
     IterationLimitError
         If an infinite band could not be closed off by the tail bound.
+    TypeError
+        If ``band`` is not a :class:`~fdsc.bands.Band`.
+    ValueError
+        If ``n_grid`` is not an integer ≥ 10 or ``xtol`` is not positive.
 
     Notes
     -----
-    This is the a-posteriori quantity bounded in paper eq. (11) and certified by Lemma 1.
+    This is the a-posteriori quantity bounded in paper eq. (11) and certified by Lemma 1
+    (paper eq. (7)).
 
     Examples
     --------
@@ -255,7 +305,7 @@ def _refine(sys, w, s, xtol, n_candidates=4):
     return best_w, best_s
 
 
-def steady_state_gain(sys, frequencies, amplitudes):
+def steady_state_gain(sys: LTISystem, frequencies: ArrayLike, amplitudes: ArrayLike) -> float:
     """Steady-state L2-induced ratio ``lim_T sqrt(∫₀ᵀ zᵀz / ∫₀ᵀ dᵀd)`` of a stable system driven
     by a scalar sum of sinusoids with distinct positive frequencies.
 
@@ -265,21 +315,31 @@ def steady_state_gain(sys, frequencies, amplitudes):
 
     Parameters
     ----------
-    sys : LTISystem
+    sys : LTISystem, control.StateSpace or (A, B, C, D)
         Stable, with one input.
     frequencies : (K,) array_like
         Distinct ω_k > 0 in rad/s.
     amplitudes : (K,) array_like
-        a_k.
+        a_k (the phases do not matter).
 
     Returns
     -------
     float
+        The ratio (not its square).
 
     Raises
     ------
     UnstableError
         If A is not Hurwitz (no steady state).
+    ValueError
+        If ``sys`` has more than one input, or a frequency is not positive or repeated.
+    DimensionError
+        If ``amplitudes`` does not have one entry per frequency.
+
+    Notes
+    -----
+    Its square is the long-run energy ratio ``∫zᵀz / ∫dᵀd`` that objective (P.1), paper eq. (14),
+    and paper Remark 5, paper eq. (54), compare with the gain of the in-band controller.
 
     Examples
     --------

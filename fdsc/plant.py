@@ -1,33 +1,51 @@
 """Systems: the open-loop plant, closed loops, and the one boundary that converts user input to them.
 
-The plant is paper eq. (10)::
+A system ``dx/dt = A x + B d, z = C x + D d`` is paper eq. (6); the plant is paper eq. (10)::
 
     dx/dt = A x + B1 d + B2 u,     z = C x + D1 d + D2 u,
 
 and state feedback ``u = K x`` gives the closed loop
-``(A + B2 K, B1, C + D2 K, D1)``. (The paper's switched closed loop prints
-``C + B2 K``; the dimensions force ``C + D2 K``.)
+``(A + B2 K, B1, C + D2 K, D1)`` (paper eqs. (9) and (32)). (The paper's switched closed loop
+prints ``C + B2 K``; the dimensions force ``C + D2 K``.)
 """
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ._validation import as_count, as_matrix
+
+if TYPE_CHECKING:  # python-control is optional: annotations only
+    import control
 
 __all__ = ["LTISystem", "Plant", "as_system", "as_plant"]
 
 
 @dataclass(frozen=True)
 class LTISystem:
-    """A continuous-time LTI system ``dx/dt = A x + B d, z = C x + D d``.
+    """A continuous-time LTI system ``dx/dt = A x + B d, z = C x + D d`` (paper eq. (6)).
+
+    The matrices are stored as read-only float arrays.
 
     Parameters
     ----------
     A : (n, n) array_like
+        State matrix.
     B : (n, m) array_like
+        Input (disturbance) matrix.
     C : (p, n) array_like
+        Output matrix.
     D : (p, m) array_like
+        Feedthrough matrix.
+
+    Raises
+    ------
+    DimensionError
+        If a matrix is not 2-D or the shapes do not fit together.
+    ValueError
+        If an entry is NaN, infinite, complex or not numeric.
 
     Examples
     --------
@@ -51,46 +69,87 @@ class LTISystem:
             object.__setattr__(self, name, val)
 
     @property
-    def n_states(self):
+    def n_states(self) -> int:
         """Number of states n."""
         return self.A.shape[0]
 
     @property
-    def n_inputs(self):
+    def n_inputs(self) -> int:
         """Number of disturbance inputs m."""
         return self.B.shape[1]
 
     @property
-    def n_outputs(self):
+    def n_outputs(self) -> int:
         """Number of regulated outputs p."""
         return self.C.shape[0]
 
-    def poles(self):
-        """Eigenvalues of A, sorted by real part (most negative first)."""
+    def poles(self) -> np.ndarray:
+        """Eigenvalues of A, sorted by real part (most negative first).
+
+        Returns
+        -------
+        (n,) ndarray
+            Complex, or real when every eigenvalue is real.
+
+        Examples
+        --------
+        >>> LTISystem([[-1.0, 0.0], [0.0, -2.0]], [[1.0], [0.0]], [[1.0, 0.0]], [[0.0]]).poles()
+        array([-2., -1.])
+        """
         ev = np.linalg.eigvals(self.A)
         return ev[np.argsort(ev.real)]
 
-    def is_hurwitz(self, margin=0.0):
-        """True if every eigenvalue of A has real part < ``-margin``."""
+    def is_hurwitz(self, margin: float = 0.0) -> bool:
+        """True if every eigenvalue of A has real part < ``-margin``.
+
+        Parameters
+        ----------
+        margin : float, optional
+            Required distance of the eigenvalues from the imaginary axis (default 0: plain
+            Hurwitz stability).
+
+        Returns
+        -------
+        bool
+
+        Examples
+        --------
+        >>> sys = LTISystem([[-0.5]], [[1.0]], [[1.0]], [[0.0]])
+        >>> sys.is_hurwitz(), sys.is_hurwitz(margin=1.0)
+        (True, False)
+        """
         return bool(np.all(np.linalg.eigvals(self.A).real < -margin))
 
 
 @dataclass(frozen=True)
 class Plant:
-    """The open-loop plant (8): ``dx/dt = A x + B1 d + B2 u``, ``z = C x + D1 d + D2 u``.
+    """The open-loop plant ``dx/dt = A x + B1 d + B2 u``, ``z = C x + D1 d + D2 u`` (paper eq. (10)).
+
+    The matrices are stored as read-only float arrays.
 
     Parameters
     ----------
     A : (n, n) array_like
+        State matrix.
     B1 : (n, m_d) array_like
         Disturbance input matrix.
     B2 : (n, m_u) array_like
         Control input matrix.
     C : (p, n) array_like
+        Output matrix of the regulated output z.
     D1 : (p, m_d) array_like
+        Feedthrough from the disturbance.
     D2 : (p, m_u) array_like
+        Feedthrough from the control.
     names : dict, optional
-        Names of states, inputs and outputs (for plots).
+        Names of states, inputs and outputs (for plots); not compared by ``==``.
+
+    Raises
+    ------
+    DimensionError
+        If a matrix is not 2-D or the shapes do not fit together.
+    ValueError
+        If an entry is NaN, infinite, complex or not numeric.
 
     Examples
     --------
@@ -121,16 +180,16 @@ class Plant:
             object.__setattr__(self, name, val)
 
     @property
-    def n_states(self):
+    def n_states(self) -> int:
         """Number of states n."""
         return self.A.shape[0]
 
     @property
-    def n_controls(self):
-        """Number of control inputs."""
+    def n_controls(self) -> int:
+        """Number of control inputs m_u."""
         return self.B2.shape[1]
 
-    def closed_loop(self, K):
+    def closed_loop(self, K: ArrayLike) -> LTISystem:
         """Closed loop under ``u = K x``: ``(A + B2 K, B1, C + D2 K, D1)``.
 
         Parameters
@@ -147,6 +206,20 @@ class Plant:
         ------
         DimensionError
             If K is not of shape ``(m_u, n)``.
+        ValueError
+            If an entry of K is NaN, infinite, complex or not numeric.
+
+        Notes
+        -----
+        State feedback paper eq. (9) applied to the plant, paper eq. (10); the closed loop is one
+        mode of paper eq. (32), with ``C + D2 K`` where the paper prints ``C + B2 K``.
+
+        Examples
+        --------
+        >>> p = Plant([[1.0]], [[1.0]], [[1.0]], [[1.0], [0.0]], [[0.0], [0.0]], [[0.0], [1.0]])
+        >>> cl = p.closed_loop([[-3.0]])
+        >>> cl.A.tolist(), cl.C.tolist()
+        ([[-2.0]], [[1.0], [-3.0]])
         """
         K = as_matrix("K", K, (self.n_controls, self.n_states))
         return LTISystem(self.A + self.B2 @ K, self.B1, self.C + self.D2 @ K, self.D1)
@@ -168,7 +241,7 @@ def _statespace_matrices(sys, name):
     return sys.A, sys.B, sys.C, sys.D
 
 
-def as_system(sys, name="sys"):
+def as_system(sys: "LTISystem | control.StateSpace | tuple", name: str = "sys") -> LTISystem:
     """Convert a system to :class:`LTISystem`: the one boundary for every function that takes one.
 
     Parameters
@@ -188,7 +261,7 @@ def as_system(sys, name="sys"):
     TypeError
         If ``sys`` is none of the accepted types (a ``Plant`` must be closed first).
     ValueError
-        If a python-control system is discrete-time.
+        If a python-control system is discrete-time, or an entry is not finite and real.
     DimensionError
         If the matrices do not fit together.
 
@@ -214,7 +287,8 @@ def as_system(sys, name="sys"):
     return LTISystem(*abcd)
 
 
-def as_plant(plant, name="plant", *, n_disturbances=None):
+def as_plant(plant: "Plant | control.StateSpace | tuple", name: str = "plant", *,
+             n_disturbances: int | None = None) -> Plant:
     """Convert an open-loop plant to :class:`Plant`: the boundary for synthesis and FDSC designs.
 
     Parameters
@@ -239,7 +313,10 @@ def as_plant(plant, name="plant", *, n_disturbances=None):
         If ``plant`` is none of the accepted types, or a StateSpace comes without
         ``n_disturbances``.
     ValueError
-        If ``n_disturbances`` leaves no disturbance or no control input.
+        If ``n_disturbances`` leaves no disturbance or no control input, if a python-control
+        system is discrete-time, or if an entry is not finite and real.
+    DimensionError
+        If the matrices do not fit together.
 
     Examples
     --------

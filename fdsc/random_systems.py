@@ -24,7 +24,8 @@ def _abscissa(abscissa):
     return lo, hi
 
 
-def random_hurwitz(rng, n, *, abscissa=(-2.0, -0.2)):
+def random_hurwitz(rng: np.random.Generator, n: int, *,
+                   abscissa: tuple[float, float] = (-2.0, -0.2)) -> np.ndarray:
     """A random real (n, n) matrix shifted so that its spectral abscissa is uniform in ``abscissa``.
 
     Draws a standard normal matrix, then one uniform number.
@@ -43,6 +44,13 @@ def random_hurwitz(rng, n, *, abscissa=(-2.0, -0.2)):
     (n, n) ndarray
         A Hurwitz matrix.
 
+    Raises
+    ------
+    TypeError
+        If ``rng`` is not a ``numpy.random.Generator``.
+    ValueError
+        If ``n`` is not an integer ≥ 1 or ``abscissa`` is not ``lo < hi < 0``.
+
     Examples
     --------
     >>> A = random_hurwitz(np.random.default_rng(0), 3)
@@ -56,7 +64,8 @@ def random_hurwitz(rng, n, *, abscissa=(-2.0, -0.2)):
     return A - (np.max(np.linalg.eigvals(A).real) + rng.uniform(-hi, -lo)) * np.eye(n)
 
 
-def random_system(rng, n, m=1, p=1, *, abscissa=(-2.0, -0.2), direct=False):
+def random_system(rng: np.random.Generator, n: int, m: int = 1, p: int = 1, *,
+                  abscissa: tuple[float, float] = (-2.0, -0.2), direct: bool = False) -> LTISystem:
     """A random stable :class:`~fdsc.LTISystem` with n states, m inputs and p outputs.
 
     Draws A by :func:`random_hurwitz`, then B (n, m), C (p, n) and, if ``direct``, D (p, m),
@@ -77,6 +86,13 @@ def random_system(rng, n, m=1, p=1, *, abscissa=(-2.0, -0.2), direct=False):
     -------
     LTISystem
 
+    Raises
+    ------
+    TypeError
+        If ``rng`` is not a ``numpy.random.Generator``.
+    ValueError
+        If a size is not an integer ≥ 1 or ``abscissa`` is not ``lo < hi < 0``.
+
     Examples
     --------
     >>> sys = random_system(np.random.default_rng(1), 4, 2, 3, direct=True)
@@ -91,7 +107,8 @@ def random_system(rng, n, m=1, p=1, *, abscissa=(-2.0, -0.2), direct=False):
     return LTISystem(A, B, C, D)
 
 
-def random_plant(rng, n=2, *, stable=False, abscissa=(-1.0, -0.1)):
+def random_plant(rng: np.random.Generator, n: int = 2, *, stable: bool = False,
+                 abscissa: tuple[float, float] = (-1.0, -0.1)) -> Plant:
     """A random plant with n states, one disturbance, one control and ``z = [c x; u]``.
 
     Draws A (standard normal, shifted by :func:`random_hurwitz` if ``stable``), then B1, B2 and
@@ -112,6 +129,16 @@ def random_plant(rng, n=2, *, stable=False, abscissa=(-1.0, -0.1)):
     Returns
     -------
     Plant
+        With ``B1, B2`` of shape (n, 1), ``C = [c; 0]`` of shape (2, n), ``D1 = 0`` and
+        ``D2 = [0; 1]``: the regulated output penalizes one state combination and the control.
+
+    Raises
+    ------
+    TypeError
+        If ``rng`` is not a ``numpy.random.Generator``.
+    ValueError
+        If ``n`` is not an integer ≥ 1 or, when ``stable``, ``abscissa`` is not
+        ``lo < hi < 0``.
 
     Examples
     --------
@@ -127,7 +154,7 @@ def random_plant(rng, n=2, *, stable=False, abscissa=(-1.0, -0.1)):
                  np.array([[0.0], [1.0]]))
 
 
-def random_spd(rng, n, *, condition=None):
+def random_spd(rng: np.random.Generator, n: int, *, condition: float | None = None) -> np.ndarray:
     """A random symmetric positive-definite (n, n) matrix.
 
     Without ``condition``: ``M Mᵀ + 10⁻³ I`` with M standard normal (Wishart-like). With it: a
@@ -145,6 +172,14 @@ def random_spd(rng, n, *, condition=None):
     Returns
     -------
     (n, n) ndarray
+        Symmetric positive definite.
+
+    Raises
+    ------
+    TypeError
+        If ``rng`` is not a ``numpy.random.Generator``.
+    ValueError
+        If ``n`` is not an integer ≥ 1 or ``condition`` is below 1.
 
     Examples
     --------

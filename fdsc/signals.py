@@ -1,16 +1,19 @@
-"""The paper's disturbances and the dominance degree α of Definitions 2 and 3.
+"""Disturbances (sums of sinusoids, piecewise signals) and the dominance degree α of Definitions 2 and 3.
 
 Sums of sinusoids are represented exactly (:class:`Sinusoids`), so that their
 dominance degree has a closed form: for distinct frequencies the mean power of
 ``Σ a_k sin(ω_k t + φ_k)`` is ``Σ a_k² / 2``, and the in-band share of it is the
-infinite-horizon α(Ω). For sampled records, α is estimated by the FFT
-(:func:`dominance_degree`) and its time-localized version α(Ω, T_l) by the
-short-time Fourier transform (:func:`localized_dominance`, ``scipy.signal.ShortTimeFFT``).
+infinite-horizon α(Ω) (paper Definition 2, the ratio after paper eq. (4)). For sampled records,
+α is estimated by the FFT (:func:`dominance_degree`) and its time-localized version α(Ω, T_l)
+(paper Definition 3, paper eq. (5)) by the short-time Fourier transform
+(:func:`localized_dominance`, ``scipy.signal.ShortTimeFFT``). The paper's test signals, paper
+eqs. (56)-(58), are :class:`Sinusoids` and :class:`Piecewise` signals.
 """
 
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy.signal import ShortTimeFFT, get_window
 
 from ._validation import as_finite_real, as_positive, as_vector, check_type
@@ -46,13 +49,28 @@ def _times(t):
 class Sinusoids:
     """A scalar sum of sinusoids ``d(t) = Σ a_k sin(ω_k t + φ_k)``.
 
+    Instances add (``d1 + d2`` concatenates the terms) and are called on times.
+
     Parameters
     ----------
     amplitudes : (K,) array_like
+        a_k (finite, real).
     frequencies : (K,) array_like
         Angular frequencies ω_k ≥ 0 in rad/s.
     phases : (K,) array_like, optional
         φ_k in rad (default 0).
+
+    Raises
+    ------
+    DimensionError
+        If an argument is not 1-D, or ``frequencies`` or ``phases`` has not one entry per
+        amplitude.
+    ValueError
+        If a frequency is negative, or an entry is not finite and real.
+
+    Notes
+    -----
+    The paper's LF and HF disturbances, paper eqs. (56) and (57), are sums of three such terms.
 
     Examples
     --------
@@ -78,13 +96,50 @@ class Sinusoids:
         object.__setattr__(self, "frequencies", w)
         object.__setattr__(self, "phases", ph)
 
-    def __call__(self, t):
-        """Values at times ``t`` (array_like, s)."""
+    def __call__(self, t: ArrayLike) -> np.ndarray:
+        """Values ``d(t)``.
+
+        Parameters
+        ----------
+        t : float or array_like
+            Times in s (finite, real), of any shape.
+
+        Returns
+        -------
+        ndarray
+            Of the shape of ``t`` (a 0-d value for a scalar).
+
+        Raises
+        ------
+        ValueError
+            If an entry of ``t`` is NaN, infinite, complex or not numeric.
+        """
         t = _times(t)
         return np.sin(np.multiply.outer(t, self.frequencies) + self.phases) @ self.amplitudes
 
-    def derivative(self, t):
-        """Time derivative at times ``t``."""
+    def derivative(self, t: ArrayLike) -> np.ndarray:
+        """Time derivative ``ḋ(t) = Σ a_k ω_k cos(ω_k t + φ_k)``.
+
+        Parameters
+        ----------
+        t : float or array_like
+            Times in s (finite, real), of any shape.
+
+        Returns
+        -------
+        ndarray
+            Of the shape of ``t``.
+
+        Raises
+        ------
+        ValueError
+            If an entry of ``t`` is NaN, infinite, complex or not numeric.
+
+        Examples
+        --------
+        >>> Sinusoids([2.0], [3.0]).derivative([0.0])
+        array([6.])
+        """
         t = _times(t)
         return (np.cos(np.multiply.outer(t, self.frequencies) + self.phases)
                 @ (self.amplitudes * self.frequencies))
@@ -96,23 +151,75 @@ class Sinusoids:
                          np.concatenate([self.frequencies, other.frequencies]),
                          np.concatenate([self.phases, other.phases]))
 
-    def scaled(self, factor):
-        """The same sum with every amplitude multiplied by ``factor``."""
+    def scaled(self, factor: float) -> "Sinusoids":
+        """The same sum with every amplitude multiplied by ``factor``.
+
+        Parameters
+        ----------
+        factor : float
+            Finite real scale (ρ_p of the paper's mixed disturbance, for instance).
+
+        Returns
+        -------
+        Sinusoids
+
+        Raises
+        ------
+        ValueError
+            If ``factor`` is not a finite real number.
+
+        Examples
+        --------
+        >>> Sinusoids([1.0, 2.0], [1.0, 3.0]).scaled(0.5).amplitudes
+        array([0.5, 1. ])
+        """
         return Sinusoids(self.amplitudes * as_finite_real("factor", factor),
                          self.frequencies, self.phases)
 
-    def power(self):
-        """Mean power ``lim 1/T ∫ d² dt`` (distinct frequencies; a DC term counts a² sin² φ)."""
+    def power(self) -> float:
+        """Mean power ``lim 1/T ∫ d² dt`` (distinct frequencies; a DC term counts a² sin² φ).
+
+        Returns
+        -------
+        float
+
+        Examples
+        --------
+        >>> Sinusoids([1.0, 2.0], [0.0, 3.0], [np.pi / 2, 0.0]).power()   # 1 + 4 / 2
+        3.0
+        """
         return float(np.sum(self._powers()))
 
     def _powers(self):
         dc = self.frequencies == 0
         return np.where(dc, (self.amplitudes * np.sin(self.phases)) ** 2, 0.5 * self.amplitudes**2)
 
-    def dominance(self, band):
-        """Exact infinite-horizon dominance degree α(Ω) (Definition 2) of the sum.
+    def dominance(self, band: Band) -> float:
+        """Exact infinite-horizon dominance degree α(Ω) (paper Definition 2) of the sum.
 
         Frequencies must be distinct for the mean powers to add.
+
+        Parameters
+        ----------
+        band : Band
+            The frequency range Ω.
+
+        Returns
+        -------
+        float
+            In-band share of the mean power, in [0, 1].
+
+        Raises
+        ------
+        ValueError
+            If a frequency repeats or the signal has zero power.
+        TypeError
+            If ``band`` is not a :class:`~fdsc.bands.Band`.
+
+        Examples
+        --------
+        >>> Sinusoids([1.0, 2.0], [0.5, 3.0]).dominance(Band.lf(1.0))   # 0.5 / (0.5 + 2)
+        0.2
         """
         check_type("band", band, Band)
         if np.unique(self.frequencies).size != self.frequencies.size:
@@ -131,8 +238,27 @@ class Piecewise:
     Parameters
     ----------
     breaks : (K + 1,) array_like
-        Increasing times; the signal is zero outside ``[breaks[0], breaks[-1])``.
+        Non-decreasing times in s; the signal is zero outside ``[breaks[0], breaks[-1])``.
     parts : sequence of Sinusoids
+        The K pieces (each evaluated at absolute time t, not at time since its break).
+
+    Raises
+    ------
+    TypeError
+        If a part is not :class:`Sinusoids`.
+    ValueError
+        If ``breaks`` does not have ``len(parts) + 1`` entries, decreases, or is not finite.
+
+    Notes
+    -----
+    The paper's piecewise disturbance, paper eq. (58), is a Piecewise of three parts.
+
+    Examples
+    --------
+    >>> one, two = Sinusoids([1.0], [0.0], [np.pi / 2]), Sinusoids([2.0], [0.0], [np.pi / 2])
+    >>> d = Piecewise([0.0, 1.0, 3.0], [one, two])       # 1 on [0, 1), 2 on [1, 3)
+    >>> d([-1.0, 0.5, 1.0, 2.5, 3.0])
+    array([0., 1., 2., 2., 0.])
     """
 
     breaks: np.ndarray
@@ -150,8 +276,24 @@ class Piecewise:
         object.__setattr__(self, "breaks", b)
         object.__setattr__(self, "parts", tuple(self.parts))
 
-    def __call__(self, t):
-        """Values at times ``t`` (array_like, s); zero outside ``[breaks[0], breaks[-1])``."""
+    def __call__(self, t: ArrayLike) -> np.ndarray:
+        """Values ``d(t)``; zero outside ``[breaks[0], breaks[-1])``.
+
+        Parameters
+        ----------
+        t : float or array_like
+            Times in s (finite, real), of any shape.
+
+        Returns
+        -------
+        ndarray
+            Of the shape of ``t``.
+
+        Raises
+        ------
+        ValueError
+            If an entry of ``t`` is NaN, infinite, complex or not numeric.
+        """
         t = np.asarray(_times(t), dtype=float)
         out = np.zeros_like(t)
         for k, part in enumerate(self.parts):
@@ -159,24 +301,33 @@ class Piecewise:
             out[sel] = part(t[sel])
         return out
 
-    def segment_of(self, t):
-        """Index of the part active at each time (−1 outside)."""
+    def segment_of(self, t: ArrayLike) -> np.ndarray:
+        """Index of the part active at each time (−1 outside ``[breaks[0], breaks[-1])``).
+
+        Parameters
+        ----------
+        t : float or array_like
+            Times in s (finite, real), of any shape.
+
+        Returns
+        -------
+        int ndarray
+            Of the shape of ``t``.
+
+        Raises
+        ------
+        ValueError
+            If an entry of ``t`` is NaN, infinite, complex or not numeric.
+
+        Examples
+        --------
+        >>> one = Sinusoids([1.0], [0.0], [np.pi / 2])
+        >>> Piecewise([0.0, 1.0, 3.0], [one, one]).segment_of([-1.0, 0.5, 1.0, 3.0])
+        array([-1,  0,  1, -1])
+        """
         t = _times(t)
         k = np.searchsorted(self.breaks, t, side="right") - 1
         return np.where((k >= 0) & (k < len(self.parts)), k, -1)
-
-
-
-
-
-
-
-
-
-
-
-
-
 
 
 def _record(x, dt):
@@ -186,7 +337,7 @@ def _record(x, dt):
     return x, as_positive("dt", dt)
 
 
-def dominance_degree(x, dt, band, *, window="hann"):
+def dominance_degree(x: ArrayLike, dt: float, band: Band, *, window: str = "hann") -> float:
     """Dominance degree α(Ω) of a sampled record, by the FFT (Definition 2).
 
     Parameters
@@ -196,6 +347,7 @@ def dominance_degree(x, dt, band, *, window="hann"):
     dt : float
         Sampling step in s. Frequencies above π/dt are not represented (aliasing).
     band : Band
+        The frequency range Ω.
     window : str, optional
         Taper applied before the FFT (``"boxcar"`` for none); a taper limits the
         leakage of a finite record into neighbouring bins.
@@ -204,6 +356,19 @@ def dominance_degree(x, dt, band, *, window="hann"):
     -------
     float
         In-band share of the energy, in [0, 1].
+
+    Raises
+    ------
+    ValueError
+        If ``x`` has fewer than 8 samples, is identically zero or not finite, or ``dt`` is not
+        positive.
+    DimensionError
+        If ``x`` is not 1-D.
+
+    Notes
+    -----
+    The ratio α(Ω_i) of paper Definition 2 (after paper eq. (4)), with the integrals over
+    frequency replaced by sums over the bins of the record's discrete Fourier transform.
 
     Examples
     --------
@@ -229,16 +394,16 @@ def dominance_degree(x, dt, band, *, window="hann"):
 
 @dataclass(frozen=True)
 class LocalizedDominance:
-    """Time-localized dominance degree α(Ω, T_l) (Definition 3).
+    """Time-localized dominance degree α(Ω, T_l) (paper Definition 3), from :func:`localized_dominance`.
 
-    Attributes
+    Parameters
     ----------
     t : (L,) ndarray
         Window centres in s.
     alpha : (L,) ndarray
-        In-band share of each window's energy.
+        In-band share of each window's energy (NaN for a window without energy).
     window_length : float
-        Window length in s.
+        Window length in s (the requested length rounded to whole samples).
     """
 
     t: np.ndarray
@@ -246,7 +411,8 @@ class LocalizedDominance:
     window_length: float
 
 
-def localized_dominance(x, dt, band, *, window_length, hop=None, window="hann"):
+def localized_dominance(x: ArrayLike, dt: float, band: Band, *, window_length: float,
+                        hop: float | None = None, window: str = "hann") -> LocalizedDominance:
     """α(Ω, T_l) over sliding windows, by the short-time Fourier transform.
 
     Parameters
@@ -256,6 +422,7 @@ def localized_dominance(x, dt, band, *, window_length, hop=None, window="hann"):
     dt : float
         Sampling step in s.
     band : Band
+        The frequency range Ω.
     window_length : float
         Length of each window T_l in s (resolves frequencies down to ~2π / window_length).
     hop : float, optional
@@ -267,6 +434,27 @@ def localized_dominance(x, dt, band, *, window_length, hop=None, window="hann"):
     -------
     LocalizedDominance
         Only windows lying entirely inside the record are returned.
+
+    Raises
+    ------
+    ValueError
+        If ``x`` has fewer than 8 samples or is not finite, ``dt``, ``window_length`` or ``hop``
+        is not positive, or a window spans fewer than 8 samples or more than the record.
+    DimensionError
+        If ``x`` is not 1-D.
+
+    Notes
+    -----
+    The ratio α(Ω_i, T_l) after paper eq. (5), each window T_l's pseudo spectrum taken as the
+    windowed Fourier transform of the record.
+
+    Examples
+    --------
+    >>> t = np.arange(0.0, 100.0, 0.01)
+    >>> x = np.where(t < 50.0, np.sin(20.0 * t), np.sin(2.0 * t))   # HF, then out of band
+    >>> ld = localized_dominance(x, 0.01, Band.hf(10.0), window_length=10.0)
+    >>> float(ld.t[0]), float(ld.t[-1]), bool(ld.alpha[0] > 0.99), bool(ld.alpha[-1] < 0.01)
+    (5.0, 95.0, True, True)
     """
     x, dt = _record(x, dt)
     window_length = as_positive("window_length", window_length)

@@ -16,6 +16,7 @@ import hashlib
 import os
 import pickle
 import tempfile
+from collections.abc import Callable
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
@@ -27,13 +28,20 @@ _PLAIN = (int, float, str, bool, type(None))
 
 
 @functools.cache
-def fingerprint():
+def fingerprint() -> str:
     """Hash of every fdsc source file, the paper's data and the numerical packages' versions.
+
+    Computed once per process (the sources do not change under a running build).
 
     Returns
     -------
     str
-        Hex digest.
+        SHA-256 hex digest (64 characters).
+
+    Examples
+    --------
+    >>> len(fingerprint())
+    64
     """
     root = Path(__file__).resolve().parent.parent
     h = hashlib.sha256()
@@ -55,7 +63,7 @@ def _plain(value):
     return isinstance(value, _PLAIN)
 
 
-def cached(fn):
+def cached(fn: Callable) -> Callable:
     """Decorate a result function so that its value is kept in ``$FDSC_CACHE_DIR`` if set.
 
     Parameters
@@ -66,7 +74,22 @@ def cached(fn):
     Returns
     -------
     callable
-        The wrapped function (same signature; ``__wrapped__`` is the original).
+        The wrapped function (same signature; ``__wrapped__`` is the original). Without the
+        environment variable, or with an argument that is not plain, it calls ``fn`` directly.
+
+    Notes
+    -----
+    A value is stored as ``<module>.<qualname>-<key>.pickle``, the key hashing the
+    :func:`fingerprint`, the function's name and its arguments; it is written to a temporary
+    file and renamed, so that a concurrent reader never sees half a file.
+
+    Examples
+    --------
+    >>> @cached
+    ... def square(x):
+    ...     return x * x
+    >>> square(3), square.__wrapped__(4)
+    (9, 16)
     """
     @functools.wraps(fn)
     def wrapper(*args, **kwargs):

@@ -14,7 +14,8 @@ __all__ = ["RecordPart", "entry"]
 _REQUIRED = ("id", "source", "paper", "recomputed", "verdict", "note")
 
 
-def entry(id, source, paper, recomputed, verdict, note, **extra):  # noqa: A002  (the record's key)
+def entry(id: str, source: str, paper: object, recomputed: object, verdict: str,  # noqa: A002  (the record's key)
+          note: str, **extra) -> dict:
     """One record entry ``{"id", "source", "paper", "recomputed", "verdict", "note", ...}``.
 
     Parameters
@@ -41,7 +42,7 @@ def entry(id, source, paper, recomputed, verdict, note, **extra):  # noqa: A002 
     Raises
     ------
     ValueError
-        If the verdict is unknown or the id is empty.
+        If the verdict is unknown or the id is not a non-empty string.
 
     Examples
     --------
@@ -67,6 +68,12 @@ class RecordPart:
     figures : dict
         Figure data keyed by figure id (see :data:`fdsc.paper.record.FIGURE_IDS`).
 
+    Raises
+    ------
+    ValueError
+        If an entry lacks one of the keys ``id``, ``source``, ``paper``, ``recomputed``,
+        ``verdict``, ``note``; or, for ``+``, if an entry id or a figure key repeats.
+
     Examples
     --------
     >>> a = RecordPart((entry("a", "s", None, 1, "new", "n"),))
@@ -86,7 +93,7 @@ class RecordPart:
                 raise ValueError(f"entries: entry {e.get('id')!r} lacks {missing}")
         object.__setattr__(self, "entries", entries)
 
-    def __add__(self, other):
+    def __add__(self, other: "RecordPart") -> "RecordPart":
         """Concatenate the entries and merge the figures (ids and figure keys must be unique)."""
         ids = {e["id"] for e in self.entries}
         dup = ids & {e["id"] for e in other.entries}
