@@ -1,21 +1,23 @@
 """An FDSC design: a plant, one state-feedback gain per frequency range, the switching law's Q's
 and their Theorem 1 certificate, in one object that simulates itself.
 
-The paper's controller (Sec. III) switches between I state-feedback gains ``u = K_σ x``; mode i is
-meant for disturbances that dominate the range Ω_i, and the law (paper eq. (31)) picks the mode
-whose weighted FD-EPF ``[ẋ; x]ᵀ (Ψ_i ⊗ Q_i) [ẋ; x]`` is largest. The Q's are either given (and
-certified by Theorem 1, paper eqs. (33)-(34)) or designed by paper Remark 4 around the in-band
-mode.
+The paper's controller (Sec. III, paper eq. (30)) switches between I state-feedback gains
+``u = K_σ x``; mode i is meant for disturbances that dominate the range Ω_i, and the law (paper
+eq. (31)) picks the mode whose weighted FD-EPF ``[ẋ; x]ᵀ (Ψ_i ⊗ Q_i) [ẋ; x]`` is largest. The
+Q's are either given (and certified by Theorem 1, paper eqs. (33)-(34)) or designed by paper
+Remark 4 (paper eq. (53)) around the in-band mode.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ._validation import as_count, as_matrix, check_type
 from .bands import Band
-from .plant import Plant, as_plant
-from .simulate import simulate
+from .plant import LTISystem, Plant, as_plant
+from .signals import Piecewise, Sinusoids
+from .simulate import SimResult, simulate
 from .switching import DEFAULT_GAMMA_TOL, Theorem1Result, certify_q, design_q
 from .synthesis import synthesize, synthesize_hinf
 
@@ -63,6 +65,17 @@ class FDSC:
     synthesis : tuple of SynthesisResult, optional
         The synthesis results, when the gains were synthesized.
 
+    Raises
+    ------
+    TypeError
+        If ``gains`` is not a list or tuple, a band is not a :class:`~fdsc.bands.Band`, or
+        ``certificate`` is not a :class:`~fdsc.switching.Theorem1Result`.
+    ValueError
+        If fewer than two bands are given, the counts of gains, bands and the certificate's Q's
+        differ, or ``in_band`` is not a mode index.
+    DimensionError
+        If a gain is not of shape ``(m_u, n)``.
+
     Attributes
     ----------
     Q : tuple of (n, n) ndarray
@@ -71,6 +84,12 @@ class FDSC:
         γ_i certified by Theorem 1.
     modes : tuple of LTISystem
         The closed loops ``(A + B2 K_i, B1, C + D2 K_i, D1)``.
+
+    Notes
+    -----
+    The controller ``u = K_σ(t) x`` of paper eq. (30) with the law of paper eq. (31); the
+    certificate holds the LMIs of Theorem 1, paper eqs. (33)-(34). The design knows nothing of
+    the paper's example: any plant and any real-Ψ bands.
 
     Examples
     --------
@@ -109,8 +128,9 @@ class FDSC:
             object.__setattr__(self, name, val)
 
     @classmethod
-    def from_gains(cls, plant, gains, bands, in_band, *, Q=None, gamma_tol=DEFAULT_GAMMA_TOL,
-                   n_disturbances=None):
+    def from_gains(cls, plant: Plant | tuple, gains: list | tuple, bands: list | tuple, in_band: int, *,
+                   Q: list | tuple | None = None, gamma_tol: float = DEFAULT_GAMMA_TOL,
+                   n_disturbances: int | None = None) -> "FDSC":
         """Build the design from given gains: certify given Q's, or design them.
 
         Parameters
@@ -141,6 +161,15 @@ class FDSC:
             If a gain does not stabilize the plant.
         InfeasibleError
             If Theorem 1 cannot certify the given Q's, or no Q's exist for this γ_tol.
+        SolverError
+            If a solve fails.
+        TypeError, ValueError, DimensionError
+            On invalid arguments (see the class).
+
+        Notes
+        -----
+        Given Q's are certified by Theorem 1, paper eqs. (33)-(34); omitted ones are designed by
+        paper Remark 4, paper eq. (53).
         """
         plant = as_plant(plant, n_disturbances=n_disturbances)
         if not isinstance(gains, list | tuple):
@@ -152,11 +181,16 @@ class FDSC:
             cert = design_q(modes, bands, in_band, gamma_tol=gamma_tol)
         else:
             cert = certify_q(modes, bands, Q)
+            # certify_q solves with Q/s and scales back, which changes the last bits; the law
+            # must use the Q's the user gave (the certificate holds for them: its LMIs are
+            # verified with a margin far above that rounding)
+            cert = replace(cert, Q=[np.array(q, dtype=float) for q in Q])
         return cls(plant, tuple(gains), bands, in_band, cert)
 
     @classmethod
-    def synthesize(cls, plant, bands, in_band, *, Q=None, gamma_tol=DEFAULT_GAMMA_TOL,
-                   n_disturbances=None, **synthesis_options):
+    def synthesize(cls, plant: Plant | tuple, bands: list | tuple, in_band: int, *,
+                   Q: list | tuple | None = None, gamma_tol: float = DEFAULT_GAMMA_TOL,
+                   n_disturbances: int | None = None, **synthesis_options) -> "FDSC":
         """Synthesize one gain per band, then build the design as :meth:`from_gains` does.
 
         Each gain minimizes the certified gain γ on its band (:func:`~fdsc.synthesis.synthesize`;
@@ -177,7 +211,8 @@ class FDSC:
         n_disturbances : int, optional
             Number of disturbance inputs of a python-control ``StateSpace`` plant.
         **synthesis_options
-            Passed to :func:`~fdsc.synthesis.synthesize` (``epsilon``, ``sigma``, ``margin``).
+            Passed to :func:`~fdsc.synthesis.synthesize` for the band-limited gains
+            (``epsilon``, ``sigma``, ``margin``, ``stability``).
 
         Returns
         -------
@@ -187,6 +222,12 @@ class FDSC:
         ------
         InfeasibleError
             If a synthesis or Theorem 1 is infeasible.
+        SolverError
+            If a solve fails.
+        VerificationError
+            If a synthesized gain fails its a-posteriori check.
+        TypeError, ValueError
+            On invalid arguments (see the class).
         """
         plant = as_plant(plant, n_disturbances=n_disturbances)
         bands = _bands(bands)
@@ -196,26 +237,26 @@ class FDSC:
         return cls(made.plant, made.gains, made.bands, made.in_band, made.certificate, results)
 
     @property
-    def n_modes(self):
+    def n_modes(self) -> int:
         """Number of modes I."""
         return len(self.gains)
 
     @property
-    def Q(self):
-        """The law's Q_i (from the certificate)."""
+    def Q(self) -> tuple:
+        """The law's Q_i (from the certificate), a tuple of (n, n) ndarray."""
         return tuple(np.asarray(q) for q in self.certificate.Q)
 
     @property
-    def gammas(self):
-        """γ_i certified by Theorem 1."""
+    def gammas(self) -> np.ndarray:
+        """γ_i certified by Theorem 1, an (I,) ndarray."""
         return np.asarray(self.certificate.gammas)
 
     @property
-    def modes(self):
+    def modes(self) -> tuple:
         """Closed loops of the modes (tuple of :class:`~fdsc.plant.LTISystem`)."""
         return tuple(self.plant.closed_loop(K) for K in self.gains)
 
-    def mode(self, i):
+    def mode(self, i: int) -> LTISystem:
         """Closed loop of mode ``i`` alone (the fixed-gain controller K_i).
 
         Parameters
@@ -226,11 +267,17 @@ class FDSC:
         Returns
         -------
         LTISystem
+
+        Raises
+        ------
+        ValueError
+            If ``i`` is not a mode index.
         """
         i = _in_band(i, self.n_modes)
         return self.plant.closed_loop(self.gains[i])
 
-    def simulate(self, d, t, *, x0=None, law="previous", sigma0=0, kernel="numba", **options):
+    def simulate(self, d: Sinusoids | Piecewise, t: ArrayLike, *, x0: ArrayLike | None = None,
+                 law: str = "previous", sigma0: int = 0, kernel: str = "numba", **options) -> SimResult:
         """Simulate the switched closed loop under the law (paper eq. (31)) with this design's Q's.
 
         Parameters
@@ -253,6 +300,11 @@ class FDSC:
         Returns
         -------
         SimResult
+
+        Raises
+        ------
+        ValueError, TypeError, SingularFrequencyError, MemoryLimitError, UnstableError
+            As :func:`~fdsc.simulate.simulate` raises them.
         """
         return simulate(list(self.modes), d, t, x0=x0, law_bands=list(self.bands),
                         law_Q=list(self.Q), law=law, sigma0=sigma0, kernel=kernel, **options)

@@ -7,3 +7,5 @@ shipped as package data), the name map (:mod:`fdsc.paper.names`), the verdict ru
 (:mod:`fdsc.paper.verdict`), the reproduction record (:mod:`fdsc.paper.record`) and the
 command line (:mod:`fdsc.paper.cli`). The library :mod:`fdsc` never imports this package.
 """
+
+__all__ = []  # the layer is used through its modules (fdsc.paper.data, fdsc.paper.record, ...)

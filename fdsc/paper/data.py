@@ -9,11 +9,12 @@ import numpy as np
 
 from .._validation import as_choice, as_finite_real, as_positive
 from ..bands import band_from_spec
+from ..design import FDSC
 from ..plant import Plant
 from ..signals import Piecewise, Sinusoids
 from ..simulate import simulate
-from ..switching import DEFAULT_GAMMA_TOL, design_q
-from .names import CONTROLLER_GAINS, CONTROLLERS
+from ..switching import DEFAULT_GAMMA_TOL
+from .names import CONTROLLER_GAINS, CONTROLLERS, FDSC_IN_BAND
 
 __all__ = [
     "DATA_FILES",
@@ -31,6 +32,7 @@ __all__ = [
     "STATIONARY_HORIZON",
     "STATIONARY_DT",
     "our_q",
+    "paper_fdsc",
     "run_controller",
 ]
 
@@ -70,6 +72,8 @@ def aircraft():
     Returns
     -------
     Plant
+        ``A_long, B^w_long, B^u_long, C_long, D_long`` as printed, with the names of states,
+        inputs and outputs.
     """
     d = paper_data("aircraft")
     names = {k: d[k]["value"] for k in ("state_names", "input_names", "output_names")}
@@ -78,13 +82,25 @@ def aircraft():
 
 
 def paper_gains():
-    """The printed gains ``{"K_f1": K, "K_f2": K, "K_f3": K, "K_e": K}`` (arrays (2, 2))."""
+    """The printed gains of Sec. IV.
+
+    Returns
+    -------
+    dict of str to (2, 2) ndarray
+        ``{"K_f1": K, "K_f2": K, "K_f3": K, "K_e": K}``.
+    """
     d = paper_data("controllers")
     return {k: np.array(v["value"]) for k, v in d.items() if k.startswith("K_")}
 
 
 def paper_bands():
-    """The paper's bands ``{"LF": Ω_1, "MF": Ω_2, "HF": Ω_3, "EF": Ω_e}`` as :class:`Band`."""
+    """The paper's frequency ranges (paper eq. (55)) and the entire range.
+
+    Returns
+    -------
+    dict of str to Band
+        ``{"LF": Ω_1, "MF": Ω_2, "HF": Ω_3, "EF": Ω_e}``.
+    """
     specs = paper_data("aircraft")["bands"]["value"]
     bands = {}
     for spec in specs.values():
@@ -100,12 +116,22 @@ def _paper_sinusoids(key):
 
 
 def lf_disturbance():
-    """``d_l(t) = sin 0.1t + sin 0.2t + sin 0.3t`` (eq. d-l)."""
+    """The LF disturbance ``d_l(t) = sin 0.1t + sin 0.2t + sin 0.3t`` (paper eq. (56)).
+
+    Returns
+    -------
+    Sinusoids
+    """
     return _paper_sinusoids("lf_disturbance")
 
 
 def hf_disturbance():
-    """``d_h(t) = sin 100t + sin 200t + sin 300t`` (eq. d-h)."""
+    """The HF disturbance ``d_h(t) = sin 100t + sin 200t + sin 300t`` (paper eq. (57)).
+
+    Returns
+    -------
+    Sinusoids
+    """
     return _paper_sinusoids("hf_disturbance")
 
 
@@ -114,7 +140,16 @@ PAPER_DISTURBANCES = ("LF", "HF")
 
 
 def paper_disturbance(kind):
-    """The paper's LF (eq. (56)) or HF (eq. (57)) disturbance by name.
+    """The paper's LF (paper eq. (56)) or HF (paper eq. (57)) disturbance by name.
+
+    Parameters
+    ----------
+    kind : {"LF", "HF"}
+        Which disturbance.
+
+    Returns
+    -------
+    Sinusoids
 
     Examples
     --------
@@ -126,7 +161,16 @@ def paper_disturbance(kind):
 
 
 def mixed_disturbance(rho_p):
-    """``d = d_h + ρ_p d_l`` (paper Fig. 7).
+    """The mixed disturbance ``d = d_h + ρ_p d_l`` of paper Fig. 7.
+
+    Parameters
+    ----------
+    rho_p : float
+        Weight ρ_p ≥ 0 of the LF part.
+
+    Returns
+    -------
+    Sinusoids
 
     Examples
     --------
@@ -144,6 +188,19 @@ def piecewise_disturbance(T, rho_t, rho_p_star):
 
     HF on ``[0, T)``, ``ρ*_p`` times LF on ``[T, T + ρ_t T)``, HF on
     ``[T + ρ_t T, 2T + ρ_t T)``.
+
+    Parameters
+    ----------
+    T : float
+        Length of the first HF segment (s, > 0).
+    rho_t : float
+        Length of the LF segment relative to T (≥ 0).
+    rho_p_star : float
+        Weight ρ*_p of the LF segment.
+
+    Returns
+    -------
+    Piecewise
     """
     T = as_positive("T", T)
     rho_t = as_finite_real("rho_t", rho_t)
@@ -155,7 +212,7 @@ def piecewise_disturbance(T, rho_t, rho_p_star):
 
 
 def paper_modes():
-    """The two FDSC modes of Sec. IV: closed loops, bands and Q's.
+    """The two FDSC modes of Sec. IV: closed loops, bands and the printed Q's.
 
     Returns
     -------
@@ -180,9 +237,51 @@ STATIONARY_DT = 1e-3
 
 
 def our_q(gamma_tol=DEFAULT_GAMMA_TOL):
-    """Q_1, Q_2 from the paper Remark 4 design on the paper's modes (in-band mode: HF, index 1)."""
-    pm = paper_modes()
-    return design_q(pm["modes"], pm["bands"], 1, gamma_tol=gamma_tol)
+    """Our Q_1, Q_2: the paper Remark 4 design on the paper's modes (in-band mode PassC-HF).
+
+    Parameters
+    ----------
+    gamma_tol : float, optional
+        γ_tol of paper Remark 4 (not printed; :data:`fdsc.switching.DEFAULT_GAMMA_TOL` by default).
+
+    Returns
+    -------
+    Theorem1Result
+        The certificate; its ``Q`` are the law's weights.
+    """
+    return paper_fdsc(gamma_tol=gamma_tol).certificate
+
+
+def paper_fdsc(Q=None, *, gamma_tol=DEFAULT_GAMMA_TOL):
+    """The paper's FDSC (Sec. IV) as a design object: K_1 = K_f1 on Ω_1, K_2 = K_f3 on Ω_3.
+
+    Parameters
+    ----------
+    Q : sequence of (2, 2) array_like or "paper", optional
+        The law's Q's: ``"paper"`` for the printed ones, given matrices, or None to design them
+        by paper Remark 4 with ``gamma_tol``. Given or printed Q's are certified by Theorem 1.
+    gamma_tol : float, optional
+        γ_tol of paper Remark 4 (used only when ``Q`` is None).
+
+    Returns
+    -------
+    FDSC
+
+    Examples
+    --------
+    >>> ctrl = paper_fdsc("paper")
+    >>> ctrl.in_band, [b.kind for b in ctrl.bands]
+    (1, ['LF', 'HF'])
+    """
+    sw = paper_data("switching")
+    gains = paper_gains()
+    bands = paper_bands()
+    if isinstance(Q, str):
+        as_choice("Q", Q, ("paper",))
+        Q = paper_modes()["Q"]
+    return FDSC.from_gains(aircraft(), [gains[k] for k in sw["modes"]["value"]],
+                           [bands[b] for b in sw["mode_bands"]["value"]], FDSC_IN_BAND, Q=Q,
+                           gamma_tol=gamma_tol)
 
 
 def run_controller(name, d, t, *, Q=None, law="previous", x0=None):
@@ -191,22 +290,23 @@ def run_controller(name, d, t, *, Q=None, law="previous", x0=None):
     Parameters
     ----------
     name : {"PassC-EF", "PassC-LF", "PassC-HF", "FDSC"}
+        The controller (paper's names).
     d : Sinusoids or Piecewise
+        The disturbance.
     t : (N,) array_like
         Uniform grid.
     Q : list of (2, 2) array_like, optional
-        Q's of the FDSC law (default the paper's).
+        Q's of the FDSC law (default the paper's); certified by Theorem 1 first.
     law : {"previous", "candidate"}
+        How ẋ enters the law (see :data:`fdsc.simulate.LAWS`).
     x0 : (2,) array_like, optional
+        Initial state (default 0).
 
     Returns
     -------
     SimResult
     """
     as_choice("name", name, CONTROLLERS)
-    plant, gains = aircraft(), paper_gains()
     if name == "FDSC":
-        pm = paper_modes()
-        return simulate(pm["modes"], d, t, law_bands=pm["bands"], law_Q=pm["Q"] if Q is None else Q,
-                        law=law, x0=x0)
-    return simulate(plant.closed_loop(gains[CONTROLLER_GAINS[name]]), d, t, x0=x0)
+        return paper_fdsc("paper" if Q is None else Q).simulate(d, t, law=law, x0=x0)
+    return simulate(aircraft().closed_loop(paper_gains()[CONTROLLER_GAINS[name]]), d, t, x0=x0)

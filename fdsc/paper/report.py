@@ -9,6 +9,17 @@ __all__ = ["html_table", "fmt"]
 def fmt(value, spec=".4g"):
     """Format a number (or pass text through) for a table cell.
 
+    Parameters
+    ----------
+    value : float, int, str or None
+        The cell's value; infinities print as ∞, NaN and None as a dash, text as is.
+    spec : str, optional
+        Format specification of a finite number.
+
+    Returns
+    -------
+    str
+
     Examples
     --------
     >>> fmt(0.123456), fmt(float("inf")), fmt(float("nan")), fmt("LF")
