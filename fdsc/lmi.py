@@ -16,7 +16,12 @@ Before solving, the state is balanced (diagonal similarity) and the output is
 divided by a sweep estimate of the peak, so that the solver sees γ ≈ 1; the
 certificate is mapped back and its LMI matrix is evaluated in the original
 coordinates, where its largest eigenvalue must be negative.
+
+The matrix itself is assembled by :func:`fdsc.kyp.kyp_matrix`, the builder shared with
+Theorem 1 and the synthesis LMIs.
 """
+
+from __future__ import annotations
 
 import time
 import warnings
@@ -28,8 +33,9 @@ from scipy.linalg import cholesky, matrix_balance, solve_continuous_lyapunov
 
 from ._validation import as_positive, check_hurwitz, check_type
 from .bands import Band
-from .exceptions import InfeasibleError, SolverError, VerificationError
+from .exceptions import DimensionError, InfeasibleError, SolverError, VerificationError
 from .frequency import band_peak
+from .kyp import kyp_matrix
 from .plant import LTISystem, as_system
 
 __all__ = [
@@ -59,9 +65,12 @@ class GKYPResult:
     ----------
     gamma : float
         Certified gain bound: σ_max(G(jω)) < gamma on the band.
-    P, Q : ndarray
-        The certificate (Hermitian; complex for MF; Q = 0 for the entire range).
+    P : (n, n) ndarray
+        The certificate's P (Hermitian; complex for MF).
+    Q : (n, n) ndarray
+        The certificate's Q ⪰ 0 (Hermitian; complex for MF; zero for the entire range).
     band : Band
+        The band the certificate holds on.
     status : str
         cvxpy status of the solve.
     max_eig : float
@@ -73,6 +82,10 @@ class GKYPResult:
     margin : float
         Strictness margin used in the normalized problem (larger than requested if
         an inaccurate solve had to be repeated).
+
+    Notes
+    -----
+    Lemma 1 of the paper, paper eq. (7).
     """
 
     gamma: float
@@ -86,11 +99,31 @@ class GKYPResult:
     margin: float
 
 
-def real_embedding(M):
+def real_embedding(M: np.ndarray) -> np.ndarray:
     """Real symmetric embedding ``[[Re M, −Im M], [Im M, Re M]]`` of a Hermitian matrix.
 
     The embedding is negative definite if and only if M is; its eigenvalues are
     those of M, each twice.
+
+    Parameters
+    ----------
+    M : (k, k) array_like
+        Hermitian matrix (real or complex).
+
+    Returns
+    -------
+    (2k, 2k) ndarray
+        The real symmetric embedding.
+
+    Raises
+    ------
+    DimensionError
+        If M is not a square 2-D array.
+
+    Notes
+    -----
+    How the complex Hermitian LMI of Lemma 1 on the MF band (paper eq. (7)) is posed over real
+    variables.
 
     Examples
     --------
@@ -99,11 +132,44 @@ def real_embedding(M):
     array([-3., -3., -1., -1.])
     """
     M = np.asarray(M)
+    if M.ndim != 2 or M.shape[0] != M.shape[1]:
+        raise DimensionError(f"M must be a square 2-D array, but found shape {M.shape}")
     return real_embedding_parts(M.real, M.imag)
 
 
-def real_embedding_parts(re, im):
-    """``[[re, −im], [im, re]]`` for NumPy arrays or cvxpy expressions (real and imaginary parts)."""
+def real_embedding_parts(re: np.ndarray | cp.Expression,
+                         im: np.ndarray | cp.Expression) -> np.ndarray | cp.Expression:
+    """The real embedding ``[[re, −im], [im, re]]`` from real and imaginary parts.
+
+    Parameters
+    ----------
+    re : (k, k) ndarray or cvxpy.Expression
+        Real part (symmetric).
+    im : (k, k) ndarray or cvxpy.Expression
+        Imaginary part (skew-symmetric).
+
+    Returns
+    -------
+    (2k, 2k) ndarray or cvxpy.Expression
+        A cvxpy expression if either part is one, else an ndarray.
+
+    Raises
+    ------
+    ValueError
+        If the parts do not have one shape (raised by :func:`numpy.block` or
+        :func:`cvxpy.bmat`).
+
+    Notes
+    -----
+    ``M = re + j·im`` is negative definite if and only if its embedding is; this is how the MF
+    band's complex LMI of Lemma 1 (paper eq. (7)) reaches a real solver.
+
+    Examples
+    --------
+    >>> real_embedding_parts(np.eye(1), np.array([[0.5]]))
+    array([[ 1. , -0.5],
+           [ 0.5,  1. ]])
+    """
     if isinstance(re, cp.Expression) or isinstance(im, cp.Expression):
         return cp.bmat([[re, -im], [im, re]])
     return np.block([[re, -im], [im, re]])
@@ -119,58 +185,65 @@ def _value(pair):
 
 
 def _lmi_parts(sys, band, P, Q, g, backend):
-    """Real and imaginary parts of the Lemma 1 matrix.
-
-    ``P = (P_re, P_im)`` and ``Q = (Q_re, Q_im)`` are pairs of real matrices (``P_im``
-    skew-symmetric; ``None`` for a real band). The system is real, so with
-    ``W = Φ⊗P + Ψ⊗Q`` the matrix is ``Fᵀ Re W F + Π`` plus ``j Fᵀ Im W F``.
-    Works with NumPy arrays (``backend=np``) and cvxpy expressions (``backend=cp``).
-    """
-    n, m, p = sys.n_states, sys.n_inputs, sys.n_outputs
-    F = np.block([[sys.A, sys.B], [np.eye(n), np.zeros((n, m))]])
-    Gm = np.block([[sys.C, sys.D], [np.zeros((m, n)), np.eye(m)]])
-    kron = cp.kron if backend is cp else np.kron
-    psi_re, psi_im = band.psi.real, band.psi.imag
-    W_re = kron(band.phi, P[0])
-    W_im = kron(band.phi, P[1]) if P[1] is not None else None
-    if band.kind != "EF":
-        W_re = W_re + kron(psi_re, Q[0])
-        if band.is_complex:
-            W_re = W_re - kron(psi_im, Q[1])
-            W_im = W_im + kron(psi_re, Q[1]) + kron(psi_im, Q[0])
-    Z = np.zeros((m, p))
-    Pi_out = np.block([[np.eye(p), Z.T], [Z, np.zeros((m, m))]])
-    Pi_in = np.block([[np.zeros((p, p)), Z.T], [Z, np.eye(m)]])
-    re = F.T @ W_re @ F + Gm.T @ Pi_out @ Gm - g * (Gm.T @ Pi_in @ Gm)
-    im = F.T @ W_im @ F if W_im is not None else None
-    return re, im
+    """``(re, im)`` of the Lemma 1 matrix; P and Q are pairs (re, im), ``im`` None for real bands."""
+    terms = [] if band.kind == "EF" else [(band.psi, Q, 1)]
+    return kyp_matrix(sys.A, sys.B, sys.C, sys.D, P, terms, g, backend=backend)
 
 
-def gkyp_matrix(sys, band, P, Q, gamma):
+def gkyp_matrix(sys: LTISystem, band: Band, P: np.ndarray, Q: np.ndarray | None,
+                gamma: float) -> np.ndarray:
     """Evaluate the Lemma 1 matrix at given ``P``, ``Q`` and ``gamma`` (NumPy).
 
     Parameters
     ----------
     sys : LTISystem
+        The system ``(A, B, C, D)`` with n states and m inputs.
     band : Band
-    P, Q : (n, n) array_like
-        Hermitian matrices (Q is ignored for the entire range).
+        The band (its Φ and Ψ); Ψ is not used for the entire range.
+    P : (n, n) array_like
+        Hermitian multiplier of Φ (complex for MF).
+    Q : (n, n) array_like or None
+        Hermitian multiplier of Ψ (complex for MF); ignored for the entire range, where None
+        is accepted.
     gamma : float
+        The gain bound; the matrix carries −γ².
 
     Returns
     -------
-    (n + m, n + m) ndarray, Hermitian.
+    (n + m, n + m) complex ndarray
+        The Hermitian part of
+        ``[A B; I 0]* (Φ⊗P + Ψ⊗Q) [A B; I 0] + [C D; 0 I]* diag(I, −γ² I) [C D; 0 I]``;
+        negative definite at a certificate.
+
+    Raises
+    ------
+    DimensionError
+        If P or Q is not (n, n).
+
+    Notes
+    -----
+    The LMI of Lemma 1, paper eq. (7), built by :func:`fdsc.kyp.kyp_matrix`; for a real band
+    only the real parts of P and Q are used.
+
+    Examples
+    --------
+    ``G(s) = 1/(s + 1)`` on the entire range, P = 1, γ = √2:
+
+    >>> gkyp_matrix(LTISystem([[-1.0]], [[1.0]], [[1.0]], [[0.0]]), Band.entire(), [[1.0]],
+    ...             None, np.sqrt(2)).real.round(12)
+    array([[-1.,  1.],
+           [ 1., -2.]])
     """
     P = np.asarray(P)
     Q = np.zeros_like(P) if Q is None else np.asarray(Q)
     cplx = band.is_complex
     re, im = _lmi_parts(sys, band, (P.real, P.imag if cplx else None),
-                        (Q.real, Q.imag if cplx else None), float(gamma) ** 2, np)
+                        (Q.real, Q.imag if cplx else None), float(gamma) ** 2, "numpy")
     M = re + 1j * im if cplx else re.astype(complex)
     return 0.5 * (M + M.conj().T)
 
 
-def solve_checked(problem, what):
+def solve_checked(problem: cp.Problem, what: str) -> str:
     """Solve a cvxpy problem with Clarabel and raise on any failure, naming Clarabel's own status.
 
     The problem is compiled by cvxpy, solved by Clarabel directly and its result unpacked by
@@ -180,6 +253,7 @@ def solve_checked(problem, what):
     Parameters
     ----------
     problem : cvxpy.Problem
+        The problem to solve (its variables receive the solution).
     what : str
         Description used in error messages.
 
@@ -195,6 +269,19 @@ def solve_checked(problem, what):
     SolverError
         On any other failure; ``exc.status`` is the cvxpy status and ``exc.solver_status``
         Clarabel's own.
+
+    Notes
+    -----
+    The settings are :data:`SOLVER_OPTIONS`; they are passed to this solve only (no global
+    solver options are changed).
+
+    Examples
+    --------
+    >>> x = cp.Variable(name="x")
+    >>> solve_checked(cp.Problem(cp.Minimize(x), [x >= 1]), "a toy LP")
+    'optimal'
+    >>> round(float(x.value), 6)
+    1.0
     """
     opts = dict(SOLVER_OPTIONS)
     data, chain, inverse = problem.get_problem_data(cp.CLARABEL, solver_opts=opts)
@@ -298,7 +385,7 @@ def _solve_once(sys, nsys, Tinv, s, band, gamma, margin):
     else:
         g = (float(gamma) / s) ** 2
         objective = cp.Minimize(0)
-    re, im = _lmi_parts(nsys, band, P, Q, g, cp)
+    re, im = _lmi_parts(nsys, band, P, Q, g, "cvxpy")
     cons = [_sym(real_embedding_parts(re, im) if cplx else re) << -margin * np.eye(
         (2 if cplx else 1) * (n + sys.n_inputs))]
     if Q is not None:
@@ -329,28 +416,37 @@ def _solve_once(sys, nsys, Tinv, s, band, gamma, margin):
     return GKYPResult(gam, P0, Q0, band, status, max_eig, elapsed, iters, margin)
 
 
-def gkyp_gamma(sys, band, *, margin=DEFAULT_MARGIN):
+def gkyp_gamma(sys: LTISystem, band: Band, *, margin: float = DEFAULT_MARGIN) -> GKYPResult:
     """Smallest γ that Lemma 1 certifies for ``sys`` on ``band``.
 
     Parameters
     ----------
     sys : LTISystem
-        The closed loop (d → z).
+        The closed loop (d → z); a python-control ``StateSpace`` or an ``(A, B, C, D)`` tuple
+        is accepted too.
     band : Band
         LF, MF, HF or the entire range (then Lemma 1 is the bounded real lemma).
     margin : float, optional
-        Strictness margin of the LMI (normalized problem).
+        Strictness margin of the LMI (normalized problem); default :data:`DEFAULT_MARGIN`.
 
     Returns
     -------
     GKYPResult
+        The smallest certified γ, its certificate and the solve's diagnostics.
 
     Raises
     ------
+    TypeError
+        If ``sys`` is not a system or ``band`` not a :class:`Band`.
+    ValueError
+        If ``margin`` is not a positive finite number.
     UnstableError
         If A is not Hurwitz (Lemma 1's γ bounds energy only for a stable loop).
     SolverError
-        On solver failure; ``VerificationError`` if the certificate fails its check.
+        On solver failure.
+    VerificationError
+        If the certificate fails its check (LMI matrix not negative definite, Q not positive
+        definite) even after the margin retries.
 
     Notes
     -----
@@ -366,17 +462,21 @@ def gkyp_gamma(sys, band, *, margin=DEFAULT_MARGIN):
     return _solve(sys, band, None, margin)
 
 
-def gkyp_certify(sys, band, gamma, *, margin=DEFAULT_MARGIN):
+def gkyp_certify(sys: LTISystem, band: Band, gamma: float, *,
+                 margin: float = DEFAULT_MARGIN) -> GKYPResult:
     """Find a Lemma 1 certificate for a *given* γ, or raise :class:`InfeasibleError`.
 
     Parameters
     ----------
     sys : LTISystem
+        The closed loop (d → z); a python-control ``StateSpace`` or an ``(A, B, C, D)`` tuple
+        is accepted too.
     band : Band
+        LF, MF, HF or the entire range.
     gamma : float
         The bound to certify (> 0).
     margin : float, optional
-        Strictness margin of the LMI (normalized problem).
+        Strictness margin of the LMI (normalized problem); default :data:`DEFAULT_MARGIN`.
 
     Returns
     -------
@@ -385,10 +485,22 @@ def gkyp_certify(sys, band, gamma, *, margin=DEFAULT_MARGIN):
 
     Raises
     ------
+    TypeError
+        If ``sys`` is not a system or ``band`` not a :class:`Band`.
+    ValueError
+        If ``gamma`` or ``margin`` is not a positive finite number.
     InfeasibleError
         If ``gamma`` does not exceed the swept band peak (decided before the solver runs).
     UnstableError
         If A is not Hurwitz.
+    SolverError
+        On solver failure.
+    VerificationError
+        If the certificate fails its check.
+
+    Notes
+    -----
+    Lemma 1, paper eq. (7), at a fixed γ (a feasibility problem).
 
     Examples
     --------

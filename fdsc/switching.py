@@ -6,10 +6,14 @@ every ordered pair i ≠ j:
 
     (T1-1)  [A_i; I]ᵀ (Φ⊗P_i^s + Ψ_i⊗Q_i − Ψ_j⊗Q_j) [A_i; I] < 0,              P_i^s > 0,
     (T1-2)  [A_i B; I 0]ᵀ (Φ⊗P_i + Ψ_i⊗Q_i − Ψ_j⊗Q_j) [A_i B; I 0]
-            + [C_i D; 0 I]ᵀ diag(I, −γ_i² I) [C_i D; 0 I] < 0,                  Q_i > 0.
+            + [C_i D; 0 I]ᵀ diag(I, −γ_i² I) [C_i D; 0 I] < 0,                  Q_i > 0,
 
-(Q enters only through differences, so its overall scale is free up to the margins.)
+paper eqs. (33) and (34). The Q_i are those of the switching law, paper eq. (31). (Q enters only
+through differences, so its overall scale is free up to the margins.) The matrices are built by
+:mod:`fdsc.kyp`, the builder shared with Lemma 1.
 """
+
+from __future__ import annotations
 
 import time
 from dataclasses import dataclass
@@ -18,9 +22,10 @@ import cvxpy as cp
 import numpy as np
 
 from ._validation import as_count, as_positive, check_hurwitz
-from .bands import PHI, Band
+from .bands import Band
 from .energy import check_weight
 from .exceptions import VerificationError
+from .kyp import Matrix, kyp_matrix, kyp_outer, kyp_weight
 from .lmi import DEFAULT_MARGIN, _sym, solve_checked
 from .plant import LTISystem, as_system
 
@@ -39,13 +44,22 @@ class Theorem1Result:
     gammas : (I,) ndarray
         γ_i of (T1-2), one per mode.
     Q : list of (n, n) ndarray
+        Q_i of the switching law (symmetric positive definite), one per mode.
     P : list of (n, n) ndarray
+        P_i of (T1-2) (symmetric), one per mode.
     Ps : list of (n, n) ndarray
+        P_i^s of (T1-1) (symmetric positive definite), one per mode.
     max_eigs : dict
         Largest eigenvalue of each (T1-1) and (T1-2) matrix at the solution, keyed
         ``("T1-1", i, j)`` / ``("T1-2", i, j)``; all < 0.
     status : str
+        cvxpy status of the solve.
     solve_time : float
+        Wall-clock seconds of the solve.
+
+    Notes
+    -----
+    Theorem 1 of the paper, LMIs (T1-1) and (T1-2) = paper eqs. (33) and (34).
     """
 
     gammas: np.ndarray
@@ -83,23 +97,72 @@ def _validate(modes, bands):
     return modes, bands
 
 
-def theorem1_matrices(mode_i, band_i, band_j, Ps_i, P_i, Q_i, Q_j, gamma_i, backend=np):
-    """The (T1-1) and (T1-2) matrices for one ordered pair (NumPy values or cvxpy expressions).
+def theorem1_matrices(mode_i: LTISystem, band_i: Band, band_j: Band, Ps_i: Matrix, P_i: Matrix,
+                      Q_i: Matrix, Q_j: Matrix, gamma_i: float | cp.Expression,
+                      backend: str = "numpy") -> tuple[Matrix, Matrix]:
+    """The (T1-1) and (T1-2) matrices for one ordered pair (i, j) (NumPy values or cvxpy expressions).
 
-    ``gamma_i`` enters as γ_i² through ``g = gamma_i**2`` for NumPy, or as the variable g for cvxpy.
+    Parameters
+    ----------
+    mode_i : LTISystem
+        Closed loop ``(A_i, B, C_i, D)`` of mode i, with n states and m inputs.
+    band_i : Band
+        Range Ω_i of mode i (its Ψ_i; real for LF, HF and the entire range).
+    band_j : Band
+        Range Ω_j of the other mode j.
+    Ps_i : (n, n) array_like or cvxpy.Expression
+        P_i^s of (T1-1).
+    P_i : (n, n) array_like or cvxpy.Expression
+        P_i of (T1-2).
+    Q_i : (n, n) array_like or cvxpy.Expression
+        Q_i of the switching law for mode i.
+    Q_j : (n, n) array_like or cvxpy.Expression
+        Q_j of the switching law for mode j.
+    gamma_i : float or cvxpy.Expression
+        With ``backend="numpy"`` the gain γ_i (squared here); with ``backend="cvxpy"`` the
+        variable g = γ_i² itself, so that the LMI stays affine.
+    backend : {"numpy", "cvxpy"}, optional
+        Build values or cvxpy expressions (see :func:`fdsc.kyp.kyp_weight`).
+
+    Returns
+    -------
+    M1 : (n, n) ndarray or cvxpy.Expression
+        ``[A_i; I]ᵀ (Φ⊗P_i^s + Ψ_i⊗Q_i − Ψ_j⊗Q_j) [A_i; I]``.
+    M2 : (n + m, n + m) ndarray or cvxpy.Expression
+        ``[A_i B; I 0]ᵀ (Φ⊗P_i + Ψ_i⊗Q_i − Ψ_j⊗Q_j) [A_i B; I 0]
+        + [C_i D; 0 I]ᵀ diag(I, −γ_i² I) [C_i D; 0 I]``.
+
+    Raises
+    ------
+    ValueError
+        If ``backend`` is not ``"numpy"`` or ``"cvxpy"``.
+    DimensionError
+        If a matrix does not match the mode's number of states.
+
+    Notes
+    -----
+    Theorem 1's (T1-1) and (T1-2), paper eqs. (33) and (34); Theorem 1 asks both to be negative
+    definite. Only the real part of Ψ is used (the function is meant for real Ψ).
+
+    Examples
+    --------
+    ``[A; I]ᵀ W [A; I]`` with A = −1 and W = [[−0.11, 1], [1, 1.1]]:
+
+    >>> from fdsc import LTISystem, Band
+    >>> mode = LTISystem([[-1.0]], [[1.0]], [[1.0]], [[0.0]])
+    >>> M1, M2 = theorem1_matrices(mode, Band.lf(1.0), Band.hf(10.0), [[1.0]], [[1.0]],
+    ...                            [[0.1]], [[0.01]], 2.0)
+    >>> M1.round(12)
+    array([[-1.01]])
+    >>> M2.round(12)
+    array([[-0.01,  1.11],
+           [ 1.11, -4.11]])
     """
-    A, B, C, D = mode_i.A, mode_i.B, mode_i.C, mode_i.D
-    n, m, p = A.shape[0], B.shape[1], C.shape[0]
-    kron = cp.kron if backend is cp else np.kron
-    Sig = kron(band_i.psi.real, Q_i) - kron(band_j.psi.real, Q_j)
-    F1 = np.vstack([A, np.eye(n)])
-    M1 = F1.T @ (kron(PHI, Ps_i) + Sig) @ F1
-    F2 = np.block([[A, B], [np.eye(n), np.zeros((n, m))]])
-    G2 = np.block([[C, D], [np.zeros((m, n)), np.eye(m)]])
-    g = gamma_i if backend is cp else gamma_i**2
-    out = np.block([[np.eye(p), np.zeros((p, m))], [np.zeros((m, p)), np.zeros((m, m))]])
-    inn = np.block([[np.zeros((p, p)), np.zeros((p, m))], [np.zeros((m, p)), np.eye(m)]])
-    M2 = F2.T @ (kron(PHI, P_i) + Sig) @ F2 + G2.T @ out @ G2 - g * (G2.T @ inn @ G2)
+    terms = [(band_i.psi, Q_i, 1), (band_j.psi, Q_j, -1)]
+    W1, _ = kyp_weight(Ps_i, terms, backend=backend)
+    M1 = kyp_outer(W1, mode_i.A)
+    g = gamma_i if backend == "cvxpy" else gamma_i**2
+    M2, _ = kyp_matrix(mode_i.A, mode_i.B, mode_i.C, mode_i.D, P_i, terms, g, backend=backend)
     return M1, M2
 
 
@@ -119,7 +182,7 @@ def _problem(modes, bands, margin, Q_fixed=None):
             if i == j:
                 continue
             M1, M2 = theorem1_matrices(modes[i], bands[i], bands[j], Ps[i], P[i], Q[i], Q[j], g[i],
-                                       backend=cp)
+                                       backend="cvxpy")
             cons += [_sym(M1) << -margin * np.eye(n), _sym(M2) << -margin * np.eye(M2.shape[0])]
     return Ps, P, Q, g, cons
 
@@ -156,8 +219,9 @@ def _result(modes, bands, Ps, P, Q, g, prob, what, scale=1.0):
     return Theorem1Result(gam, Qv, Pv, Psv, eigs, status, elapsed)
 
 
-def certify_q(modes, bands, Q, *, margin=DEFAULT_MARGIN):
-    """The smallest γ_i that Theorem 1 certifies for *given* Q_i (each γ_i minimized).
+def certify_q(modes: list[LTISystem], bands: list[Band], Q: list[np.ndarray], *,
+              margin: float = DEFAULT_MARGIN) -> Theorem1Result:
+    """The smallest γ_i that Theorem 1 certifies for *given* Q_i (the sum of the γ_i² minimized).
 
     Parameters
     ----------
@@ -168,17 +232,45 @@ def certify_q(modes, bands, Q, *, margin=DEFAULT_MARGIN):
     Q : list of (n, n) array_like
         The Q_i of the switching law (symmetric positive definite).
     margin : float, optional
+        Strictness margin of every LMI (in the problem scaled to O(1) data); default
+        :data:`~fdsc.lmi.DEFAULT_MARGIN`.
 
     Returns
     -------
     Theorem1Result
+        The γ_i, the given Q_i and the certificate.
 
     Raises
     ------
+    ValueError
+        If fewer than two modes are given, the lists differ in length, the modes do not share
+        B and D, a band is complex (MF), a Q_i is not symmetric positive definite, or
+        ``margin`` is not positive.
+    TypeError
+        If a band is not a :class:`~fdsc.Band`.
     UnstableError
         If a mode is not Hurwitz (named with its eigenvalue).
     InfeasibleError
         If (T1-1) or (T1-2) cannot hold for these Q's whatever the γ's.
+    SolverError
+        On any other solver failure.
+    VerificationError
+        If an LMI is not negative definite at the returned solution.
+
+    Notes
+    -----
+    Theorem 1, paper eqs. (33) and (34), for every ordered pair i ≠ j, with the Q_i of the
+    switching law (paper eq. (31)) fixed. The LMIs are homogeneous, so they are solved with the
+    Q_i and CᵀC scaled to O(1) and the certificate is scaled back.
+
+    Examples
+    --------
+    >>> from fdsc import LTISystem, Band
+    >>> modes = [LTISystem([[-1.0]], [[1.0]], [[1.0]], [[0.0]]),
+    ...          LTISystem([[-3.0]], [[1.0]], [[1.0]], [[0.0]])]
+    >>> res = certify_q(modes, [Band.lf(1.0), Band.hf(10.0)], [np.eye(1), 0.01 * np.eye(1)])
+    >>> bool(np.all(res.gammas > 0)), all(v < 0 for v in res.max_eigs.values())
+    (True, True)
     """
     modes, bands = _validate(modes, bands)
     n = modes[0].n_states
@@ -196,28 +288,61 @@ def certify_q(modes, bands, Q, *, margin=DEFAULT_MARGIN):
     return _result(modes, bands, Ps, P, Qs, g, prob, "Theorem 1 with given Q's", scale=s)
 
 
-def design_q(modes, bands, in_band, *, gamma_tol=DEFAULT_GAMMA_TOL, margin=DEFAULT_MARGIN):
-    """paper Remark 4: fix γ_j = γ_tol for every j ≠ in_band and minimize γ_in_band over the Q's.
+def design_q(modes: list[LTISystem], bands: list[Band], in_band: int, *,
+             gamma_tol: float = DEFAULT_GAMMA_TOL,
+             margin: float = DEFAULT_MARGIN) -> Theorem1Result:
+    """The Q design of paper Remark 4: fix γ_j = γ_tol for every j ≠ in_band, minimize γ_in_band.
 
     Parameters
     ----------
-    modes, bands : see :func:`certify_q`
+    modes : list of LTISystem
+        Closed loops of the modes (I ≥ 2), sharing B and D.
+    bands : list of Band
+        Range Ω_i of each mode's law term (real Ψ).
     in_band : int
         Index of the in-band mode i (0-based).
-    gamma_tol : float
-        γ_tol of paper Remark 4 (> 0).
+    gamma_tol : float, optional
+        γ_tol of paper Remark 4 (> 0); default :data:`DEFAULT_GAMMA_TOL` (the paper prints none).
     margin : float, optional
+        Strictness margin of every LMI; default :data:`~fdsc.lmi.DEFAULT_MARGIN`.
 
     Returns
     -------
     Theorem1Result
+        The designed Q_i (for the switching law, paper eq. (31)), the γ_i and the certificate.
 
     Raises
     ------
+    ValueError
+        If fewer than two modes are given, the lists differ in length, the modes do not share
+        B and D, a band is complex (MF), ``in_band`` is not a mode index, or ``gamma_tol`` or
+        ``margin`` is not positive.
+    TypeError
+        If a band is not a :class:`~fdsc.Band`.
     UnstableError
         If a mode is not Hurwitz.
     InfeasibleError
         If no Q's satisfy Theorem 1 with this γ_tol.
+    SolverError
+        On any other solver failure.
+    VerificationError
+        If an LMI is not negative definite at the returned solution.
+
+    Notes
+    -----
+    Paper Remark 4: minimize γ_i subject to Theorem 1's (T1-1) and (T1-2), paper eqs. (33) and
+    (34), with γ_j = γ_tol for j ≠ i, over P_i^s, P_i, Q_i.
+
+    Examples
+    --------
+    Mode 1 (``1/(s + 3)``) is in band on HF [10, ∞); its γ reaches the HF peak ``1/√109``:
+
+    >>> from fdsc import LTISystem, Band
+    >>> modes = [LTISystem([[-1.0]], [[1.0]], [[1.0]], [[0.0]]),
+    ...          LTISystem([[-3.0]], [[1.0]], [[1.0]], [[0.0]])]
+    >>> res = design_q(modes, [Band.lf(1.0), Band.hf(10.0)], 1, gamma_tol=2.0)
+    >>> round(float(res.gammas[0]), 6), round(float(res.gammas[1]), 4), round(1 / 109**0.5, 4)
+    (2.0, 0.0958, 0.0958)
     """
     modes, bands = _validate(modes, bands)
     in_band = as_count("in_band", in_band, 0)

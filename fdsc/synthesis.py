@@ -12,8 +12,11 @@ for this companion (the book's passive-controller chapter shows the steps):
    HF (α = 1, β = σ ≥ 0, a user choice).
 
 A band LMI alone does not make ``A_K`` Hurwitz; the Lyapunov LMI (dual form, slack
-``[εI; I] Xᵀ``) shares X and Y and enforces it.
+``[εI; I] Xᵀ``) shares X and Y and enforces it. The supply rate of the dual realization comes
+from :func:`fdsc.kyp.supply_parts`, the builder shared with Lemma 1 and Theorem 1.
 """
+
+from __future__ import annotations
 
 import time
 from dataclasses import dataclass
@@ -26,8 +29,9 @@ from ._validation import as_count, as_matrix, as_nonnegative, as_positive, check
 from .bands import Band
 from .exceptions import InfeasibleError, IterationLimitError, VerificationError
 from .frequency import band_peak, sigma_max
+from .kyp import supply_parts
 from .lmi import DEFAULT_MARGIN, _sym, real_embedding_parts, solve_checked
-from .plant import as_plant
+from .plant import Plant, as_plant
 
 __all__ = ["SynthesisResult", "DirectResult", "synthesize", "synthesize_hinf", "optimize_gain",
            "check_stabilizable", "DEFAULT_EPSILON", "DEFAULT_SIGMA", "SWEEP_RTOL", "PBH_RTOL"]
@@ -43,24 +47,38 @@ SWEEP_RTOL = 1e-5
 PBH_RTOL = 1e-9
 
 
-def check_stabilizable(plant, *, rtol=PBH_RTOL):
-    """PBH test: raise :class:`InfeasibleError` if ``(A, B2)`` has an uncontrollable eigenvalue
-    with real part ≥ 0, which no state feedback can move.
+def check_stabilizable(plant: Plant, *, rtol: float = PBH_RTOL) -> None:
+    """PBH test: raise if ``(A, B2)`` has an uncontrollable eigenvalue with real part ≥ 0.
 
-    Runs before every synthesis that asks for a stabilizing gain, so that a specification that is
-    infeasible for this reason is reported the same way on every machine (the LMIs are
-    homogeneous; without the test the solver's verdict would hang on its strictness margin).
+    No state feedback can move such an eigenvalue. The test runs before every synthesis that
+    asks for a stabilizing gain, so that a specification that is infeasible for this reason is
+    reported the same way on every machine (the LMIs are homogeneous; without the test the
+    solver's verdict would hang on its strictness margin).
 
     Parameters
     ----------
     plant : Plant
+        The open-loop plant (A, B1, B2, C, D1, D2).
     rtol : float, optional
         Relative rank tolerance (see :data:`PBH_RTOL`).
 
+    Returns
+    -------
+    None
+        If every eigenvalue with real part ≥ 0 is controllable from B2.
+
     Raises
     ------
+    TypeError
+        If ``plant`` is not a :class:`~fdsc.Plant`.
+    ValueError
+        If ``rtol`` is not a positive finite number.
     InfeasibleError
         Naming the uncontrollable unstable eigenvalue; ``status`` is ``"not solved (PBH test)"``.
+
+    Notes
+    -----
+    Eigenvalue λ is uncontrollable when ``[A − λI, B2]`` loses rank (Popov–Belevitch–Hautus).
 
     Examples
     --------
@@ -99,6 +117,7 @@ class SynthesisResult:
     K : (m_u, n) ndarray
         The gain, ``u = K x``.
     band : Band
+        The band designed for (the entire range for :func:`synthesize_hinf`).
     gamma_lmi : float
         γ certified by the synthesis LMI.
     gamma_sweep : float
@@ -108,9 +127,18 @@ class SynthesisResult:
     status : str
         cvxpy status.
     solve_time : float
+        Wall-clock seconds of the solve.
     iterations : int
-    epsilon, sigma : float
-        The parameters used (``sigma`` is NaN except for HF).
+        Interior-point iterations.
+    epsilon : float
+        ε of the stability LMI (NaN for :func:`synthesize_hinf`, which needs none).
+    sigma : float
+        σ of the HF slack (NaN except for HF).
+
+    Notes
+    -----
+    ``gamma_lmi`` bounds the in-band gain through Lemma 1 (paper eq. (7)) applied to the dual
+    realization; ``gamma_sweep`` is its a-posteriori value.
     """
 
     K: np.ndarray
@@ -167,21 +195,73 @@ def _finish(plant, band, X, Y, g, prob, what, t0, epsilon, sigma, stability=True
                            int(prob.solver_stats.num_iters or 0), epsilon, sigma)
 
 
-def synthesize(plant, band, *, epsilon=DEFAULT_EPSILON, sigma=DEFAULT_SIGMA,
-               margin=DEFAULT_MARGIN, stability=True):
+def _band_lmi(plant, band, X, Y, P, Q, g, sigma):
+    """``(re, im)`` of the band LMI of :func:`synthesize` (the dual gKYP inequality after Finsler).
+
+    ``P`` and ``Q`` are pairs (re, im) with ``im`` None for a real band. The top-left 2n×2n block is
+    ``Φ⊗P + Ψ⊗Q``, written block by block rather than by :func:`fdsc.kyp.kyp_weight`: cvxpy
+    numbers the variables in the order it meets them, and the solver's answer for these
+    ill-conditioned problems (K poorly determined) moves with that order: built by the builder,
+    the MF and HF gains of the reproduction record move by up to 4e-3 (relative), so this
+    layout is kept. ``tests/test_kyp.py`` checks that the projection of
+    this matrix onto the kernel of the slack is :func:`fdsc.kyp.kyp_matrix` of the dual
+    realization.
+    """
+    n, p = plant.n_states, plant.C.shape[0]
+    cplx = band.is_complex
+    ZA = plant.A @ X + plant.B2 @ Y
+    ZC = plant.C @ X + plant.D2 @ Y
+    B1, D1 = plant.B1, plant.D1
+    psi = band.psi
+    zpn, zpp = np.zeros((n, p)), np.zeros((p, p))
+    # supply rate of the dual realization (B1ᵀ, D1ᵀ) in the last n + p rows and columns; it
+    # holds constants and g only, so adding it leaves cvxpy's order of the variables unchanged
+    out, inn = supply_parts(B1.T, D1.T)
+    supply = cp.bmat([[np.zeros((n, n)), np.zeros((n, n + p))],
+                      [np.zeros((n + p, n)), out - g * inn]])
+    if band.kind in ("LF", "MF"):
+        # slack [0; I; 0] Xᵀ (fictitious pole at infinity, outside LF and MF: lossless)
+        # ψ12 Q = (Re ψ12 Q_re − Im ψ12 Q_im) + j (Im ψ12 Q_re + Re ψ12 Q_im)
+        r12 = P[0] + psi[0, 1].real * Q[0] - X
+        if cplx:
+            r12 = r12 - psi[0, 1].imag * Q[1]
+        re = cp.bmat([
+            [-Q[0], r12, zpn],
+            [r12.T, psi[1, 1].real * Q[0] + ZA + ZA.T, ZC.T],
+            [zpn.T, ZC, zpp]]) + supply
+        im = None
+        if cplx:
+            # imaginary parts: Ψ12 = jϖ_c multiplies Q_re; X, Y, Z are real
+            i12 = P[1] + psi[0, 1].imag * Q[0] + psi[0, 1].real * Q[1]
+            i22 = psi[1, 1].real * Q[1]
+            im = cp.bmat([[-Q[1], i12, zpn], [-i12.T, i22, zpn], [zpn.T, zpn.T, zpp]])
+    else:  # HF, slack [I; σI; 0] Xᵀ
+        r12 = P[0] + ZA.T - sigma * X
+        re = cp.bmat([
+            [Q[0] - X - X.T, r12, ZC.T],
+            [r12.T, -band.lower**2 * Q[0] + sigma * (ZA + ZA.T), sigma * ZC.T],
+            [ZC, sigma * ZC, zpp]]) + supply
+        im = None
+    return re, im
+
+
+def synthesize(plant: Plant, band: Band, *, epsilon: float = DEFAULT_EPSILON,
+               sigma: float = DEFAULT_SIGMA, margin: float = DEFAULT_MARGIN,
+               stability: bool = True) -> SynthesisResult:
     """Band-limited state feedback minimizing the certified in-band gain γ.
 
     Parameters
     ----------
     plant : Plant
+        The open-loop plant; the closed loop is ``(A + B2 K, B1, C + D2 K, D1)``.
     band : Band
         LF, MF or HF (use :func:`synthesize_hinf` for the entire range).
     epsilon : float, optional
-        ε > 0 of the stability LMI.
+        ε > 0 of the stability LMI; default :data:`DEFAULT_EPSILON`.
     sigma : float, optional
-        σ ≥ 0 of the HF slack (ignored for LF and MF).
+        σ ≥ 0 of the HF slack (ignored for LF and MF); default :data:`DEFAULT_SIGMA`.
     margin : float, optional
-        Strictness margin of every LMI.
+        Strictness margin of every LMI; default :data:`~fdsc.lmi.DEFAULT_MARGIN`.
     stability : bool, optional
         Add the Lyapunov LMI sharing X and Y (default). Without it the band LMI alone may
         return a destabilizing gain (then ``gamma_sweep`` is inf); it shows what the shared
@@ -190,9 +270,15 @@ def synthesize(plant, band, *, epsilon=DEFAULT_EPSILON, sigma=DEFAULT_SIGMA,
     Returns
     -------
     SynthesisResult
+        The gain K = Y X⁻¹, the LMI bound and the swept in-band gain.
 
     Raises
     ------
+    TypeError
+        If ``plant`` is not a :class:`~fdsc.Plant`, ``band`` not a :class:`~fdsc.Band` or
+        ``stability`` not a bool.
+    ValueError
+        If ``band`` is the entire range, or ``epsilon``, ``sigma`` or ``margin`` is out of range.
     InfeasibleError
         If ``stability`` is set and the PBH test finds an uncontrollable eigenvalue with real
         part ≥ 0 (decided before the solver runs), or if the solver reports the LMIs infeasible.
@@ -200,6 +286,12 @@ def synthesize(plant, band, *, epsilon=DEFAULT_EPSILON, sigma=DEFAULT_SIGMA,
         If the solve fails (the message names Clarabel's status).
     VerificationError
         If the returned gain fails its a-posteriori checks (Hurwitz, sweep ≤ LMI bound).
+
+    Notes
+    -----
+    Lemma 1 (paper eq. (7)) for the dual realization ``(A_Kᵀ, C_Kᵀ, B1ᵀ, D1ᵀ)``, made affine in
+    ``Z_A = A X + B2 Y``, ``Z_C = C X + D2 Y`` by Finsler's lemma (see the module docstring).
+    Exact for LF and MF; for HF only sufficient, with σ placing the fictitious pole at −σ.
 
     Examples
     --------
@@ -218,7 +310,7 @@ def synthesize(plant, band, *, epsilon=DEFAULT_EPSILON, sigma=DEFAULT_SIGMA,
         raise TypeError(f"stability must be True or False, but found {stability!r}")
     if stability:
         check_stabilizable(plant)
-    n, mu, p = plant.n_states, plant.n_controls, plant.C.shape[0]
+    n, mu = plant.n_states, plant.n_controls
     cplx = band.is_complex
     X = cp.Variable((n, n), name="X")
     Y = cp.Variable((mu, n), name="Y")
@@ -226,37 +318,8 @@ def synthesize(plant, band, *, epsilon=DEFAULT_EPSILON, sigma=DEFAULT_SIGMA,
     P = _herm_pair(n, "P", cplx)
     Q = _herm_pair(n, "Q", cplx)
     Ps = cp.Variable((n, n), symmetric=True, name="P_s")
+    re, im = _band_lmi(plant, band, X, Y, P, Q, g, sigma)
     ZA = plant.A @ X + plant.B2 @ Y
-    ZC = plant.C @ X + plant.D2 @ Y
-    B1, D1 = plant.B1, plant.D1
-    psi = band.psi
-    zpn = np.zeros((n, p))
-    gI = g * np.eye(p)
-    if band.kind in ("LF", "MF"):
-        # slack [0; I; 0] Xᵀ (fictitious pole at infinity, outside LF and MF: lossless)
-        # ψ12 Q = (Re ψ12 Q_re − Im ψ12 Q_im) + j (Im ψ12 Q_re + Re ψ12 Q_im)
-        r12 = P[0] + psi[0, 1].real * Q[0] - X
-        if cplx:
-            r12 = r12 - psi[0, 1].imag * Q[1]
-        re = cp.bmat([
-            [-Q[0], r12, zpn],
-            [r12.T, psi[1, 1].real * Q[0] + ZA + ZA.T + B1 @ B1.T, ZC.T + B1 @ D1.T],
-            [zpn.T, ZC + D1 @ B1.T, D1 @ D1.T - gI]])
-        im = None
-        if cplx:
-            # imaginary parts: Ψ12 = jϖ_c multiplies Q_re; X, Y, Z are real
-            i12 = P[1] + psi[0, 1].imag * Q[0] + psi[0, 1].real * Q[1]
-            i22 = psi[1, 1].real * Q[1]
-            zp = np.zeros((p, p))
-            im = cp.bmat([[-Q[1], i12, zpn], [-i12.T, i22, zpn], [zpn.T, zpn.T, zp]])
-    else:  # HF, slack [I; σI; 0] Xᵀ
-        r12 = P[0] + ZA.T - sigma * X
-        re = cp.bmat([
-            [Q[0] - X - X.T, r12, ZC.T],
-            [r12.T, -band.lower**2 * Q[0] + sigma * (ZA + ZA.T) + B1 @ B1.T,
-             sigma * ZC.T + B1 @ D1.T],
-            [ZC, sigma * ZC + D1 @ B1.T, D1 @ D1.T - gI]])
-        im = None
     stab = cp.bmat([[-epsilon * (X + X.T), Ps - X + epsilon * ZA.T],
                     [Ps - X.T + epsilon * ZA, ZA + ZA.T]])
     cons = [_neg_def(re, im, margin), _pos_def(*Q, margin)]
@@ -270,7 +333,20 @@ def synthesize(plant, band, *, epsilon=DEFAULT_EPSILON, sigma=DEFAULT_SIGMA,
                    epsilon, sigma if band.kind == "HF" else float("nan"), stability)
 
 
-def synthesize_hinf(plant, *, margin=DEFAULT_MARGIN):
+def _hinf_lmi(plant, X, Y, g):
+    """The dual bounded real lemma of :func:`synthesize_hinf`.
+
+    ``Fᵀ (Φ⊗X) F`` with ``F = [A_Kᵀ C_Kᵀ; I 0]`` is ``[[He(Z_A), Z_Cᵀ], [Z_C, 0]]``, affine in
+    ``Z_A = A X + B2 Y`` and ``Z_C = C X + D2 Y``; the supply rate is that of (B1ᵀ, D1ᵀ).
+    """
+    p = plant.C.shape[0]
+    ZA = plant.A @ X + plant.B2 @ Y
+    ZC = plant.C @ X + plant.D2 @ Y
+    out, inn = supply_parts(plant.B1.T, plant.D1.T)
+    return cp.bmat([[ZA + ZA.T, ZC.T], [ZC, np.zeros((p, p))]]) + out - g * inn
+
+
+def synthesize_hinf(plant: Plant, *, margin: float = DEFAULT_MARGIN) -> SynthesisResult:
     """H∞ state feedback (entire frequency range), minimizing ‖G‖∞.
 
     Dual bounded-real lemma with ``X = Xᵀ > 0``:
@@ -279,20 +355,34 @@ def synthesize_hinf(plant, *, margin=DEFAULT_MARGIN):
     Parameters
     ----------
     plant : Plant
+        The open-loop plant; the closed loop is ``(A + B2 K, B1, C + D2 K, D1)``.
     margin : float, optional
-        Strictness margin of the LMI.
+        Strictness margin of the LMI; default :data:`~fdsc.lmi.DEFAULT_MARGIN`.
 
     Returns
     -------
     SynthesisResult
+        With ``band`` the entire range and ``epsilon``, ``sigma`` NaN.
 
     Raises
     ------
+    TypeError
+        If ``plant`` is not a :class:`~fdsc.Plant`.
+    ValueError
+        If ``margin`` is not a positive finite number.
     InfeasibleError
         If the PBH test finds an uncontrollable eigenvalue with real part ≥ 0 (before solving),
         or if the solver reports the LMI infeasible.
-    SolverError, VerificationError
-        As for :func:`synthesize`.
+    SolverError
+        If the solve fails (the message names Clarabel's status).
+    VerificationError
+        If the returned gain fails its a-posteriori checks (Hurwitz, sweep ≤ LMI bound).
+
+    Notes
+    -----
+    Lemma 1 (paper eq. (7)) on the entire range (Ψ = 0, the bounded real lemma) for the dual
+    realization; with P = X the matrix is ``Fᵀ(Φ⊗X)F + supply`` of
+    :func:`fdsc.kyp.kyp_matrix`, affine in ``Z_A`` and ``Z_C``.
 
     Examples
     --------
@@ -308,11 +398,7 @@ def synthesize_hinf(plant, *, margin=DEFAULT_MARGIN):
     X = cp.Variable((n, n), symmetric=True, name="X")
     Y = cp.Variable((mu, n), name="Y")
     g = cp.Variable(name="gamma_sq", nonneg=True)
-    ZA = plant.A @ X + plant.B2 @ Y
-    ZC = plant.C @ X + plant.D2 @ Y
-    B1, D1 = plant.B1, plant.D1
-    M = cp.bmat([[ZA + ZA.T + B1 @ B1.T, ZC.T + B1 @ D1.T],
-                 [ZC + D1 @ B1.T, D1 @ D1.T - g * np.eye(p)]])
+    M = _hinf_lmi(plant, X, Y, g)
     cons = [_sym(M) << -margin * np.eye(n + p), X >> margin * np.eye(n)]
     prob = cp.Problem(cp.Minimize(g), cons)
     t0 = time.perf_counter()
@@ -326,11 +412,19 @@ class DirectResult:
 
     Attributes
     ----------
-    K : ndarray
+    K : (m_u, n) ndarray
+        The best gain found, ``u = K x``.
+    band : Band
+        The band whose peak was minimized.
     gamma_sweep : float
         Band peak of σ_max for the closed loop with K (refined sweep).
     n_evaluations : int
         Objective evaluations over all starts.
+
+    Notes
+    -----
+    Uncertified: a cross-check of :class:`SynthesisResult`, whose bound comes from Lemma 1
+    (paper eq. (7)).
     """
 
     K: np.ndarray
@@ -347,8 +441,10 @@ def _objective_grid(band, n_grid):
     return np.geomspace(band.lower, band.lower * 1e4, n_grid)
 
 
-def optimize_gain(plant, band, K0, *, n_starts=4, spread=0.5, n_grid=400, maxiter=4000,
-                  k_max=None, rng=None):
+def optimize_gain(plant: Plant, band: Band, K0: np.ndarray, *, n_starts: int = 4,
+                  spread: float = 0.5, n_grid: int = 400, maxiter: int = 4000,
+                  k_max: float | None = None,
+                  rng: np.random.Generator | None = None) -> DirectResult:
     """Minimize the band peak of σ_max directly over K (Nelder–Mead, several starts).
 
     A non-convex, uncertified search used to cross-check the synthesis LMIs: on each start the
@@ -358,29 +454,55 @@ def optimize_gain(plant, band, K0, *, n_starts=4, spread=0.5, n_grid=400, maxite
     Parameters
     ----------
     plant : Plant
+        The open-loop plant.
     band : Band
+        The band whose peak of σ_max is minimized.
     K0 : (m_u, n) array_like
         First start (e.g. the LMI gain); further starts perturb it by ``spread`` (relative).
-    n_starts : int
-    spread : float
-    n_grid : int
-        Grid points of the objective.
-    maxiter : int
+    n_starts : int, optional
+        Number of starts (≥ 1).
+    spread : float, optional
+        Relative size (≥ 0) of the normal perturbations of K0 for starts after the first.
+    n_grid : int, optional
+        Grid points of the objective (≥ 2).
+    maxiter : int, optional
         Cap on Nelder–Mead iterations per start.
     k_max : float, optional
         Bound on ‖K‖_F (default ``100 · max(1, ‖K0‖_F)``). The peak often keeps falling as the
         gain grows (high-gain directions), so an unbounded search need not converge.
     rng : numpy.random.Generator, optional
-        Source of the perturbations (seeded by the caller for reproducibility).
+        Source of the perturbations (seeded by the caller for reproducibility; default
+        ``numpy.random.default_rng(0)``).
 
     Returns
     -------
     DirectResult
+        The best gain and its refined band peak.
 
     Raises
     ------
+    TypeError
+        If ``plant``, ``band`` or ``rng`` has the wrong type.
+    DimensionError
+        If ``K0`` is not (m_u, n).
+    ValueError
+        If a count, ``spread`` or ``k_max`` is out of range.
     IterationLimitError
         If no start converged within ``maxiter`` iterations.
+
+    Notes
+    -----
+    A cross-check of the synthesis LMIs (Lemma 1, paper eq. (7), for the dual realization): it
+    certifies nothing.
+
+    Examples
+    --------
+    >>> from fdsc import random_plant
+    >>> plant = random_plant(np.random.default_rng(11), stable=True)
+    >>> K0 = synthesize(plant, Band.lf(1.0)).K
+    >>> res = optimize_gain(plant, Band.lf(1.0), K0, n_starts=1, rng=np.random.default_rng(0))
+    >>> bool(res.gamma_sweep <= band_peak(plant.closed_loop(K0), Band.lf(1.0)).gamma)
+    True
     """
     plant = _check(plant, band)
     K0 = np.array(as_matrix("K0", K0, (plant.n_controls, plant.n_states)))
