@@ -61,7 +61,7 @@ SOLVER_OPTIONS = {"tol_gap_abs": 1e-10, "tol_gap_rel": 1e-10, "tol_feas": 1e-10,
 class GKYPResult:
     """Certificate of Lemma 1 for one system and one band.
 
-    Attributes
+    Parameters
     ----------
     gamma : float
         Certified gain bound: σ_max(G(jω)) < gamma on the band.

@@ -39,7 +39,7 @@ DEFAULT_GAMMA_TOL = 10.0
 class Theorem1Result:
     """Certificate of Theorem 1.
 
-    Attributes
+    Parameters
     ----------
     gammas : (I,) ndarray
         γ_i of (T1-2), one per mode.

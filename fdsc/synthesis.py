@@ -112,7 +112,7 @@ def check_stabilizable(plant: Plant, *, rtol: float = PBH_RTOL) -> None:
 class SynthesisResult:
     """A synthesized state-feedback gain and its certificates.
 
-    Attributes
+    Parameters
     ----------
     K : (m_u, n) ndarray
         The gain, ``u = K x``.
@@ -410,7 +410,7 @@ def synthesize_hinf(plant: Plant, *, margin: float = DEFAULT_MARGIN) -> Synthesi
 class DirectResult:
     """Result of :func:`optimize_gain` (direct minimization of the band peak over K).
 
-    Attributes
+    Parameters
     ----------
     K : (m_u, n) ndarray
         The best gain found, ``u = K x``.
