@@ -40,27 +40,33 @@ def _axes(ax, figsize=(7, 4)):
     return ax
 
 
-def plot_psi_weights(data, kind, ax=None, *, real_part=True):
+def plot_psi_weights(result, kind, ax=None, *, real_part=True):
     """Weight ``[jω;1]*Ψ[jω;1]`` of one band over ±ω (symlog axes), band shaded.
 
     Parameters
     ----------
-    data : dict
-        Output of :func:`fdsc.experiments.psi_weights`.
+    result : fdsc.paper.frequency_ranges.PsiWeights
+        Output of :func:`fdsc.paper.frequency_ranges.psi_weights`.
     kind : {"LF", "MF", "HF"}
+        The band to draw.
     ax : matplotlib Axes, optional
+        Where to draw (default: a new figure).
     real_part : bool
-        Also draw the weight of Re Ψ (what a real signal sees).
+        Also draw the weight of Re Ψ (what a real signal sees), where it differs.
+
+    Returns
+    -------
+    matplotlib Axes
     """
     ax = _axes(ax)
-    w, d = data["omega"], data[kind]
+    w, d = result.omega, result[kind]
     color = BAND_COLORS[kind]
-    ax.plot(w, d["weight"], color=color, label=r"$[j\omega;1]^*\Psi[j\omega;1]$")
-    if real_part and not np.allclose(d["weight"], d["real_weight"]):
-        ax.plot(w, d["real_weight"], color="k", ls="--", label=r"weight of Re $\Psi$ (real signals)")
-    hi = d["upper"] if math.isfinite(d["upper"]) else np.abs(w).max()
+    ax.plot(w, d.weight, color=color, label=r"$[j\omega;1]^*\Psi[j\omega;1]$")
+    if real_part and not np.allclose(d.weight, d.real_weight):
+        ax.plot(w, d.real_weight, color="k", ls="--", label=r"weight of Re $\Psi$ (real signals)")
+    hi = d.upper if math.isfinite(d.upper) else np.abs(w).max()
     for sgn in (1, -1):
-        a, b = sorted((sgn * d["lower"], sgn * hi))
+        a, b = sorted((sgn * d.lower, sgn * hi))
         ax.axvspan(a, b, color=color, alpha=0.12, lw=0, label="band" if sgn == 1 else None)
     ax.axhline(0, color="0.5", lw=0.8)
     ax.set_xscale("symlog", linthresh=1e-1)
@@ -69,93 +75,159 @@ def plot_psi_weights(data, kind, ax=None, *, real_part=True):
     ax.set_yscale("symlog", linthresh=1.0)
     ax.set_xlabel(r"$\omega$ [rad/s]")
     ax.set_ylabel("weight [(rad/s)$^2$]")
-    ax.set_title(d["label"])
+    ax.set_title(d.label)
     ax.legend(fontsize=8, loc="best")
     return ax
 
 
-def plot_dominance_vs_rho(data, ax=None):
-    """α(Ω_3) of ``d_h + ρ_p d_l`` against ρ_p: closed form and FFT estimate."""
+def plot_dominance_vs_rho(result, ax=None):
+    """α(Ω_3) of ``d_h + ρ_p d_l`` against ρ_p: closed form and FFT estimate.
+
+    Parameters
+    ----------
+    result : fdsc.paper.frequency_ranges.DominanceVsRho
+        Output of :func:`fdsc.paper.frequency_ranges.dominance_vs_rho`.
+    ax : matplotlib Axes, optional
+        Where to draw (default: a new figure).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
     ax = _axes(ax)
-    ax.plot(data["rho_p"], data["exact"], "k-", label="closed form (mean powers)")
-    ax.plot(data["rho_p"], data["fft"], "o", mfc="none", color="tab:orange",
-            label=f"FFT of a {data['horizon']:g} s record (Hann)")
+    ax.plot(result.rho_p, result.exact, "k-", label="closed form (mean powers)")
+    ax.plot(result.rho_p, result.fft, "o", mfc="none", color="tab:orange",
+            label=f"FFT of a {result.horizon:g} s record (Hann)")
     ax.set_xlabel(r"$\rho_p$ [-]")
     ax.set_ylabel(r"dominance degree $\alpha(\Omega_3)$ [-]")
     ax.legend()
     return ax
 
 
-def plot_localized_dominance(data, ax=None):
-    """α(Ω_1, T_l) and α(Ω_3, T_l) along the piecewise disturbance, segment limits marked."""
+def plot_localized_dominance(result, ax=None):
+    """α(Ω_1, T_l) and α(Ω_3, T_l) along the piecewise disturbance, segment limits marked.
+
+    Parameters
+    ----------
+    result : fdsc.paper.frequency_ranges.PiecewiseDominance
+        Output of :func:`fdsc.paper.frequency_ranges.localized_dominance_piecewise`.
+    ax : matplotlib Axes, optional
+        Where to draw (default: a new figure).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
     ax = _axes(ax)
     for kind, name in (("LF", r"$\alpha(\Omega_1, T_l)$"), ("HF", r"$\alpha(\Omega_3, T_l)$")):
-        ax.plot(data[kind]["t"], data[kind]["alpha"], color=BAND_COLORS[kind], label=name)
-    for b in data["breaks"][1:-1]:
+        ax.plot(result.t, result.alpha[kind], color=BAND_COLORS[kind], label=name)
+    for b in result.breaks[1:-1]:
         ax.axvline(b, color="0.4", ls=":", lw=1)
     ax.set_xlabel("window centre $t$ [s]")
     ax.set_ylabel("time-localized dominance [-]")
     ax.set_ylim(-0.05, 1.05)
-    ax.legend(title=f"windows of {data['window_length']:g} s")
+    ax.legend(title=f"windows of {result.window_length:g} s")
     return ax
 
 
-def plot_sigma_sweep(omega, curves, bands=None, ax=None):
-    """σ_max(G(jω)) curves on log-log axes, with band limits marked.
+def plot_sigma_sweep(result, ax=None, *, bands=None, labels=None, marks=None):
+    """σ_max(G(jω)) curves on log-log axes, with band limits marked (paper Fig. 3).
 
     Parameters
     ----------
-    omega : (k,) array
-    curves : dict
-        ``{label: (k,) array}``.
+    result : fdsc.paper.passive_controllers.SigmaCurves
+        Output of :func:`fdsc.paper.passive_controllers.sigma_curves`.
+    ax : matplotlib Axes, optional
+        Where to draw (default: a new figure).
     bands : iterable of float, optional
-        Frequencies of band limits to mark.
+        Frequencies of band limits to mark (default the result's ``band_limits``).
+    labels : dict, optional
+        ``{gain name: legend label}`` (default: the gain with its controller, e.g.
+        ``"K_f1 (PassC-LF)"``, for the printed gains' names, else the name).
+    marks : iterable of (float, float), optional
+        Points ``(ω, σ_max)`` to mark with dots (e.g. band peaks).
+
+    Returns
+    -------
+    matplotlib Axes
     """
+    from .names import GAIN_BANDS
+
     ax = _axes(ax)
     styles = ("-", "--", "-.", ":")
-    for k, (label, s) in enumerate(curves.items()):
+    for k, (name, s) in enumerate(result.sigma.items()):
+        if labels is not None:
+            label = labels[name]
+        else:
+            label = f"{name} (PassC-{GAIN_BANDS[name]})" if name in GAIN_BANDS else name
         # curves of near-equal gains (K_f2 and K_e) would hide each other without distinct styles
-        ax.loglog(omega, s, ls=styles[k % len(styles)], lw=1.6, label=label)
-    for wb in bands or ():
+        ax.loglog(result.omega, s, ls=styles[k % len(styles)], lw=1.6, label=label)
+    for wb in result.band_limits if bands is None else bands:
         ax.axvline(wb, color="0.5", ls=":", lw=1)
+    for w, v in marks or ():
+        ax.plot(w, v, "k.", ms=4)
     ax.set_xlabel(r"$\omega$ [rad/s]")
     ax.set_ylabel(r"$\sigma_{max}(G(j\omega))$ [-]")
     ax.legend()
     return ax
 
 
-def plot_hf_sigma_scan(rows, ax=None, *, reference=None):
+def plot_hf_sigma_scan(result, ax=None, *, reference=True):
     """HF designs against σ: LMI γ, in-band sweep γ and out-of-band peak (log axes).
 
     Parameters
     ----------
-    rows : list of dict
-        Output of :func:`fdsc.passive.sigma_sensitivity` (σ = 0 is drawn at the left edge).
-    reference : dict, optional
-        ``{"in_band": ..., "out_of_band": ...}`` of a reference gain (K_f3), drawn as lines.
+    result : fdsc.paper.passive_controllers.HFBest
+        Output of :func:`fdsc.paper.passive_controllers.hf_best` (σ = 0 is not drawn on the
+        log axis).
+    ax : matplotlib Axes, optional
+        Where to draw (default: a new figure).
+    reference : bool, optional
+        Draw the in-band and out-of-band peaks of the printed K_f3 as horizontal lines.
+
+    Returns
+    -------
+    matplotlib Axes
     """
     ax = _axes(ax)
-    pos = [r for r in rows if r["sigma"] > 0]
-    s = [r["sigma"] for r in pos]
-    ax.loglog(s, [r["gamma_lmi"] for r in pos], "o-", label=r"LMI bound $\gamma$ (in band)")
-    ax.loglog(s, [r["gamma_sweep"] for r in pos], "s--", label="in-band peak (sweep)")
-    ax.loglog(s, [r["out_of_band"] for r in pos], "^:", label=r"out-of-band peak ($|\omega| \leq 10$)")
+    scan = result.scan
+    pos = scan.sigma > 0
+    s = scan.sigma[pos]
+    ax.loglog(s, scan.gamma_lmi[pos], "o-", label=r"LMI bound $\gamma$ (in band)")
+    ax.loglog(s, scan.gamma_sweep[pos], "s--", label="in-band peak (sweep)")
+    ax.loglog(s, scan.out_of_band[pos], "^:",
+              label=rf"out-of-band peak ($|\omega| \leq {scan.band_edge:g}$)")
     if reference:
-        ax.axhline(reference["in_band"], color="tab:green", lw=1, label="K_f3 in band")
-        ax.axhline(reference["out_of_band"], color="tab:red", lw=1, label="K_f3 out of band")
+        ax.axhline(result.K_f3_in_band, color="tab:green", lw=1, label="K_f3 in band")
+        ax.axhline(result.K_f3_out_of_band, color="tab:red", lw=1, label="K_f3 out of band")
     ax.set_xlabel(r"fictitious-pole parameter $\sigma$ [rad/s]")
     ax.set_ylabel(r"$\sigma_{max}$ peak [-]")
     ax.legend(fontsize=8)
     return ax
 
 
-def plot_gap(data, ax=None, *, band_limits=()):
-    """paper Remark 3's gap function for each candidate out-of-band gain (semilog-x, zero marked)."""
+def plot_gap(result, ax=None, *, band_limits=None):
+    """paper Remark 3's gap function for each candidate out-of-band gain (semilog-x, zero marked).
+
+    Parameters
+    ----------
+    result : fdsc.paper.passive_controllers.GapCurves
+        Output of :func:`fdsc.paper.passive_controllers.gap_curves` or
+        :func:`fdsc.paper.passive_controllers.remark3_gap`.
+    ax : matplotlib Axes, optional
+        Where to draw (default: a new figure).
+    band_limits : iterable of float, optional
+        Frequencies of band limits to mark (default the result's ``band_limits``).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
     ax = _axes(ax)
-    for label, g in data["gap"].items():
-        ax.semilogx(data["omega"], g, label=label)
+    for label, g in result.gap.items():
+        ax.semilogx(result.omega, g, label=label)
     ax.axhline(0, color="0.4", lw=0.8)
-    for wb in band_limits:
+    for wb in result.band_limits if band_limits is None else band_limits:
         ax.axvline(wb, color="0.5", ls=":", lw=1)
     ax.set_yscale("symlog", linthresh=1e-1)
     ax.set_xlabel(r"$\omega$ [rad/s]")
@@ -164,12 +236,24 @@ def plot_gap(data, ax=None, *, band_limits=()):
     return ax
 
 
-def plot_power_vs_alpha(data, ax=None):
-    """Steady-state average FD-EPF against α(Ω_3) (symlog y), sign changes marked."""
+def plot_power_vs_alpha(data, ax: plt.Axes | None = None) -> plt.Axes:
+    """Steady-state average FD-EPF against α(Ω_3) (symlog y), sign changes marked (paper Remark 1).
+
+    Parameters
+    ----------
+    data : PowerVsAlpha
+        Result of :func:`fdsc.paper.frequency_selective.power_vs_alpha`.
+    ax : matplotlib Axes, optional
+        Axes to draw on (default: a new figure).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
     ax = _axes(ax)
-    for label, v in data["curves"].items():
-        line, = ax.plot(data["alpha"], v, label=label)
-        a = data["crossing"].get(label)
+    for label, v in data.curves.items():
+        line, = ax.plot(data.alpha, v, label=label)
+        a = data.crossing.get(label)
         if a is not None:
             ax.axvline(a, color=line.get_color(), ls=":", lw=1)
     ax.axhline(0, color="0.4", lw=0.8)
@@ -180,37 +264,62 @@ def plot_power_vs_alpha(data, ax=None):
     return ax
 
 
-def plot_epf_series(data, ax=None):
-    """Instantaneous FD-EPF of both law terms (min–max band per bin) and their running averages
-    (thick)."""
+def plot_epf_series(data, ax: plt.Axes | None = None) -> plt.Axes:
+    """Instantaneous FD-EPF (paper eq. (29)) of both law terms (min–max band per bin) and their
+    running averages (paper eq. (28), thick).
+
+    Parameters
+    ----------
+    data : EPFSeries
+        Result of :func:`fdsc.paper.frequency_selective.epf_time_series`.
+    ax : matplotlib Axes, optional
+        Axes to draw on (default: a new figure).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
     ax = _axes(ax)
     for kind, color in (("LF", BAND_COLORS["LF"]), ("HF", BAND_COLORS["HF"])):
-        ax.fill_between(data["t"], data["P_t_lo"][kind], data["P_t_hi"][kind], step="post",
+        ax.fill_between(data.t, data.P_t_lo[kind], data.P_t_hi[kind], step="post",
                         color=color, alpha=0.3, lw=0,
-                        label=f"$P_t$, {kind} term (min–max per {data['bin'] * 1e3:g} ms)")
-        for edge in (data["P_t_lo"][kind], data["P_t_hi"][kind]):  # a smooth P_t has a thin band
-            ax.plot(data["t"], edge, color=color, lw=0.4, alpha=0.6, drawstyle="steps-post")
-        ax.plot(data["t"], data["P_a"][kind], color=color, lw=2, label=f"running $P_a$, {kind} term")
+                        label=f"$P_t$, {kind} term (min–max per {data.bin * 1e3:g} ms)")
+        for edge in (data.P_t_lo[kind], data.P_t_hi[kind]):  # a smooth P_t has a thin band
+            ax.plot(data.t, edge, color=color, lw=0.4, alpha=0.6, drawstyle="steps-post")
+        ax.plot(data.t, data.P_a[kind], color=color, lw=2, label=f"running $P_a$, {kind} term")
     ax.axhline(0, color="0.4", lw=0.8)
     ax.set_yscale("symlog", linthresh=1e-3)
     ax.set_xlabel("$t$ [s]")
     ax.set_ylabel("FD-EPF [-]")
-    ax.set_title(f"{data['gain']} loop, {data['disturbance']} disturbance")
+    ax.set_title(f"{data.gain} loop, {data.disturbance} disturbance")
     ax.legend(fontsize=7, ncol=2)
     return ax
 
 
-def plot_prop1_cases(rows, ax=None):
-    """S(Ω^in) against S(Ω^out) for every case (symlog axes); the proposition's quadrant shaded."""
+def plot_prop1_cases(rows, ax: plt.Axes | None = None) -> plt.Axes:
+    """S(Ω^in) against S(Ω^out) for every case (symlog axes); the quadrant Proposition 1 (paper
+    eqs. (21), (22)) claims shaded.
+
+    Parameters
+    ----------
+    rows : Prop1Cases
+        Result of :func:`fdsc.paper.frequency_selective.prop1_cases`.
+    ax : matplotlib Axes, optional
+        Axes to draw on (default: a new figure).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
     ax = _axes(ax)
     markers = {"infinite, real Ψ": "o", "infinite, MF": "s", "window from rest": "^",
                "infinite, Q weighting one state": "D"}
     for kind, m in markers.items():
-        sel = [r for r in rows if r["kind"] == kind]
+        sel = [c for c in rows.cases if c.kind == kind]
         if sel:
-            ax.scatter([r["S_in"] for r in sel], [r["S_out"] for r in sel], marker=m, s=18,
-                       facecolors="none", edgecolors=["tab:green" if r["passed"] else "tab:red"
-                                                     for r in sel], label=kind)
+            ax.scatter([c.S_in for c in sel], [c.S_out for c in sel], marker=m, s=18,
+                       facecolors="none", edgecolors=["tab:green" if c.passed else "tab:red"
+                                                     for c in sel], label=kind)
     ax.set_xscale("symlog", linthresh=1e-4)
     ax.set_yscale("symlog", linthresh=1e-4)
     ax.axvline(0, color="0.4", lw=0.8)
@@ -224,8 +333,18 @@ def plot_prop1_cases(rows, ax=None):
     return ax
 
 
-def plot_fdsc_diagram(ax=None):
-    """Paper Fig. 1: the closed loop with FDSC, drawn as a block diagram (no data)."""
+def plot_fdsc_diagram(ax: plt.Axes | None = None) -> plt.Axes:
+    """Paper Fig. 1: the closed loop with FDSC, drawn as a block diagram (no data).
+
+    Parameters
+    ----------
+    ax : matplotlib Axes, optional
+        Axes to draw on (default: a new figure).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
     from matplotlib.patches import FancyArrowPatch, FancyBboxPatch
 
     ax = _axes(ax, figsize=(9, 4.2))
@@ -257,7 +376,8 @@ def plot_fdsc_diagram(ax=None):
     return ax
 
 
-def plot_outputs(data, component, ax=None, *, scale=None, names=None, head=False):
+def plot_outputs(data, component: int, ax: plt.Axes | None = None, *, scale: dict | None = None,
+                 names: list | None = None, head: bool = False) -> plt.Axes:
     """One output of z over time for each controller (paper Figs. 4 and 5).
 
     The whole run is drawn as the min/max envelope of each bin of the decimated record (a band
@@ -266,17 +386,18 @@ def plot_outputs(data, component, ax=None, *, scale=None, names=None, head=False
 
     Parameters
     ----------
-    data : dict
-        Output of :func:`fdsc.scenarios.stationary_runs`.
+    data : StationaryRuns
+        Result of :func:`fdsc.paper.stationary.stationary_runs`.
     component : int
         0: 4q, 1: 2δ_E, 2: 2δ_PTV (the rows of z).
     ax : matplotlib Axes, optional
+        Axes to draw on (default: a new figure).
     scale : dict, optional
         ``{controller: factor}`` applied before drawing (stated in the legend).
     names : list of str, optional
         Controllers to draw (default all).
     head : bool, optional
-        Draw the full-resolution start of the run (``data["t_head"]``) instead of the envelope.
+        Draw the full-resolution start of the run (``data.t_head``) instead of the envelope.
 
     Returns
     -------
@@ -284,36 +405,47 @@ def plot_outputs(data, component, ax=None, *, scale=None, names=None, head=False
     """
     ax = _axes(ax)
     labels = ["$4q$ (pitch rate)", r"$2\delta_E$ (tail deflection)", r"$2\delta_{PTV}$ (nozzle deflection)"]
-    for name in data["z_lo"]:
+    for name in data.z_lo:
         if names is not None and name not in names:
             continue
         color, ls = CONTROLLER_STYLES.get(name, ("k", "-"))
         f = (scale or {}).get(name, 1.0)
         lab = name if f == 1.0 else f"{name} × {f:g}"
         if head:
-            ax.plot(data["t_head"], f * data["z_head"][name][:, component], color=color, ls=ls,
+            ax.plot(data.t_head, f * data.z_head[name][:, component], color=color, ls=ls,
                     lw=0.9, label=lab)
         else:
-            lo, hi = f * data["z_lo"][name][:, component], f * data["z_hi"][name][:, component]
-            ax.fill_between(data["t"], lo, hi, step="post", color=color, alpha=0.35, lw=0,
-                            label=f"{lab} (min–max per {data['every'] * data['dt'] * 1e3:g} ms)")
+            lo, hi = f * data.z_lo[name][:, component], f * data.z_hi[name][:, component]
+            ax.fill_between(data.t, lo, hi, step="post", color=color, alpha=0.35, lw=0,
+                            label=f"{lab} (min–max per {data.every * data.dt * 1e3:g} ms)")
             for edge in (lo, hi):  # edges keep a thin band visible where lo ≈ hi
-                ax.plot(data["t"], edge, color=color, ls=ls, lw=0.6, drawstyle="steps-post")
+                ax.plot(data.t, edge, color=color, ls=ls, lw=0.6, drawstyle="steps-post")
     ax.set_xlabel("$t$ [s]")
     ax.set_ylabel(f"$z_{component + 1}$ = {labels[component]} [-]")
     ax.legend(fontsize=7, ncol=2)
     return ax
 
 
-def plot_l2_curves(data, ax=None):
+def plot_l2_curves(data, ax: plt.Axes | None = None) -> plt.Axes:
     """Paper Fig. 6: the running L2-induced norm sqrt(∫zᵀz / ∫d²) over time for each controller,
     drawn as its min/max per bin of the decimated record (so its early oscillation is not aliased).
+
+    Parameters
+    ----------
+    data : StationaryRuns
+        Result of :func:`fdsc.paper.stationary.stationary_runs` (HF disturbance for paper Fig. 6).
+    ax : matplotlib Axes, optional
+        Axes to draw on (default: a new figure).
+
+    Returns
+    -------
+    matplotlib Axes
     """
     ax = _axes(ax)
-    t = data["t_l2"]
-    for name in data["l2_lo"]:
+    t = data.t_l2
+    for name in data.l2_lo:
         color, ls = CONTROLLER_STYLES.get(name, ("k", "-"))
-        lo, hi = data["l2_lo"][name], data["l2_hi"][name]
+        lo, hi = data.l2_lo[name], data.l2_hi[name]
         ax.fill_between(t, lo, hi, step="post", color=color, alpha=0.35, lw=0)
         ax.plot(t, hi, color=color, ls=ls, lw=1.0, drawstyle="steps-post", label=name)
     ax.set_xlabel("$t$ [s]")
@@ -323,17 +455,30 @@ def plot_l2_curves(data, ax=None):
     return ax
 
 
-def plot_sigma_timeline(data, ax=None):
-    """σ(t) of each law variant against the piecewise disturbance (stacked rows, segments marked)."""
+def plot_sigma_timeline(data, ax: plt.Axes | None = None) -> plt.Axes:
+    """σ(t) of each law variant (paper eq. (31)) against the piecewise disturbance (paper eq.
+    (58)): stacked rows, segments marked.
+
+    Parameters
+    ----------
+    data : SwitchingStatistics
+        Result of :func:`fdsc.paper.switching_law.switching_statistics`.
+    ax : matplotlib Axes, optional
+        Axes to draw on (default: a new figure).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
     ax = _axes(ax, figsize=(10, 4))
-    variants = list(data["variants"].items())
+    variants = list(data.variants.items())
     for k, (label, v) in enumerate(variants):
-        ax.fill_between(data["t"], k, k + 0.8 * v["sigma"], step="post", alpha=0.8,
-                        label=f"{label}: {v['switches']} switches")
-    for b in data["breaks"][1:-1]:
+        ax.fill_between(data.t, k, k + 0.8 * v.sigma, step="post", alpha=0.8,
+                        label=f"{label}: {v.switches} switches")
+    for b in data.breaks[1:-1]:
         ax.axvline(b, color="k", ls=":", lw=1)
     ax.set_yticks([k + 0.4 for k in range(len(variants))], [lab for lab, _ in variants], fontsize=8)
     ax.set_xlabel("$t$ [s]  (dotted: disturbance switches HF → LF → HF)")
-    ax.set_title(f"share of each {data['bin'] * 1e3:g} ms bin on PassC-HF ($K_2$): full bar = all "
+    ax.set_title(f"share of each {data.bin * 1e3:g} ms bin on PassC-HF ($K_2$): full bar = all "
                  "of it, no bar = all on PassC-LF ($K_1$)", fontsize=9)
     return ax

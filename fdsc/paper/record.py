@@ -5,7 +5,15 @@
 """
 
 
-from . import frequency_selective, gkyp_lemma, passive_controllers, stationary, theorem1
+from . import (
+    frequency_ranges,
+    frequency_selective,
+    gkyp_lemma,
+    passive_controllers,
+    stationary,
+    switching_law,
+    theorem1,
+)
 from .cache import cached
 from .environment import environment
 from .names import FIGURE_IDS
@@ -66,7 +74,8 @@ def figure_status(record):
 
 
 #: The chapters that contribute to the record, in the record's order.
-CHAPTERS = (gkyp_lemma, passive_controllers, frequency_selective, theorem1, stationary)
+CHAPTERS = (frequency_ranges, gkyp_lemma, passive_controllers, frequency_selective, theorem1, switching_law,
+            stationary)
 
 
 @cached

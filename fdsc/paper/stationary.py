@@ -1,13 +1,15 @@
 """Chapter 'stationary': paper Figs. 4, 5 and 6 (stationary LF and HF disturbances, four
-controllers), energies, and step halving.
+controllers), energies, the paper's sentences about these figures, and step halving.
 """
 
+from dataclasses import dataclass
 
 import numpy as np
 
-from .._validation import as_positive
+from .._validation import as_choice, as_positive
 from ..frequency import steady_state_gain
 from ..simulate import envelope, time_grid
+from .cache import cached
 from .data import (
     STATIONARY_DT,
     STATIONARY_HORIZON,
@@ -18,13 +20,29 @@ from .data import (
     run_controller,
 )
 from .names import CONTROLLER_GAINS, CONTROLLERS, FIGURE_IDS
-from .results import RecordPart
+from .results import RecordPart, entry
+from .verdict import worst_verdict
 
 __all__ = [
     "record_part",
+    "OUR_Q_NAME",
+    "StationaryRuns",
     "stationary_runs",
+    "Claim",
+    "LFOutputClaims",
+    "lf_output_claims",
+    "HFOutputClaims",
+    "hf_output_claims",
+    "L2Claims",
+    "hf_l2_claims",
+    "HalvingRow",
+    "StepHalving",
     "step_halving",
 ]
+
+
+#: The name of FDSC with our Q's beside the paper's four controllers.
+OUR_Q_NAME = "FDSC (our Q)"
 
 
 def _l2_norm_curve(sim):
@@ -36,100 +54,639 @@ def _l2_norm_curve(sim):
     return ratio
 
 
-def stationary_runs(kind, *, horizon=STATIONARY_HORIZON, dt=STATIONARY_DT, every=50,
-                    head=2.0, with_our_q=True):
+@dataclass(frozen=True)
+class StationaryRuns:
+    """The controllers under one stationary disturbance, from rest (see :func:`stationary_runs`).
+
+    Parameters
+    ----------
+    kind : {"LF", "HF"}
+        The disturbance.
+    horizon, dt : float
+        Run length and step in s.
+    every : int
+        Samples per bin of the decimated traces.
+    t : (k,) ndarray
+        Bin starts in s.
+    z_lo, z_hi : dict
+        ``{controller: (k, 3) ndarray}``: min/max of z per bin.
+    t_head : (h,) ndarray
+        Times of the start of the run kept at full resolution.
+    z_head : dict
+        ``{controller: (h, 3) ndarray}``: z over ``t_head``.
+    energy : dict
+        ``{controller: ∫zᵀz dt}`` over the run.
+    input_energy : float
+        ∫d² dt over the run.
+    l2 : dict
+        ``{controller: (k,) ndarray}``: running L2-induced norm at the bin starts.
+    t_l2 : (k,) ndarray
+        Bin starts of ``l2_lo``/``l2_hi`` (the ratio is undefined at t = 0).
+    l2_lo, l2_hi : dict
+        ``{controller: (k,) ndarray}``: min/max of the running norm per bin.
+    l2_steady : dict
+        ``{fixed-gain controller: the limit of its running ratio}`` (closed form).
+    peak : dict
+        ``{controller: (3,) ndarray}``: max |z_i| over the run.
+    switches : dict
+        ``{FDSC variant: number of switches}``.
+    share : dict
+        ``{FDSC variant: [share of mode 1, share of mode 2]}``.
+    """
+
+    kind: str
+    horizon: float
+    dt: float
+    every: int
+    t: np.ndarray
+    z_lo: dict
+    z_hi: dict
+    t_head: np.ndarray
+    z_head: dict
+    energy: dict
+    input_energy: float
+    l2: dict
+    t_l2: np.ndarray
+    l2_lo: dict
+    l2_hi: dict
+    l2_steady: dict
+    peak: dict
+    switches: dict
+    share: dict
+
+    def __post_init__(self):
+        as_choice("kind", self.kind, ("LF", "HF"))
+
+    @property
+    def names(self) -> tuple:
+        """The controllers run, in order."""
+        return tuple(self.energy)
+
+    @property
+    def l2_final(self) -> dict:
+        """``{controller: running L2-induced norm at the horizon}``."""
+        return {k: float(v[-1]) for k, v in self.l2.items()}
+
+    def to_record(self) -> RecordPart:
+        """Record figures ``lf_outputs`` (LF) or ``hf_outputs`` and ``hf_l2`` (HF).
+
+        Returns
+        -------
+        RecordPart
+        """
+        fig = {"LF": "lf_outputs", "HF": "hf_outputs"}[self.kind]
+        data = {"paper_figure": FIGURE_IDS[fig], "disturbance": self.kind,
+                "horizon": self.horizon, "dt": self.dt,
+                "energy": {k: v for k, v in self.energy.items() if k != OUR_Q_NAME}}
+        if OUR_Q_NAME in self.energy:
+            data["energy_fdsc_our_q"] = self.energy[OUR_Q_NAME]
+        data["switches"] = self.switches
+        data["units"] = {"horizon": "s", "dt": "s",
+                         "energy": "integral of z'z over [0, horizon] (z as printed, s)"}
+        figures = {fig: data}
+        if self.kind == "HF":
+            figures["hf_l2"] = {
+                "paper_figure": FIGURE_IDS["hf_l2"], "horizon": self.horizon,
+                "l2_induced_norm_final": self.l2_final,
+                "l2_induced_norm_steady_state": self.l2_steady,
+                "units": {"horizon": "s", "l2_induced_norm": "1 (sqrt of an energy ratio)"},
+                "note": "running ratio from rest at the horizon; steady state = its limit for the "
+                        "fixed gains (closed form); FDSC has no closed form"}
+        return RecordPart(figures=figures)
+
+
+@cached
+def stationary_runs(kind: str, *, horizon: float = STATIONARY_HORIZON, dt: float = STATIONARY_DT,
+                    every: int = 50, head: float = 2.0, with_our_q: bool = True) -> StationaryRuns:
     """Paper Figs. 4 (kind="LF"), 5 and 6 (kind="HF"): the four controllers under a stationary
     disturbance, from rest.
 
     Parameters
     ----------
     kind : {"LF", "HF"}
-        The paper's LF (eq. (56)) or HF (eq. (57)) disturbance.
-    horizon, dt : float
+        The paper's LF (paper eq. (56)) or HF (paper eq. (57)) disturbance.
+    horizon, dt : float, optional
         Run length and step in s.
-    every : int
+    every : int, optional
         Samples per bin of the decimated traces (min/max envelope, so nothing is aliased).
-    head : float
+    head : float, optional
         Length in s of the start of the run kept at full resolution.
-    with_our_q : bool
-        Add FDSC with our Q's ("FDSC (our Q)").
+    with_our_q : bool, optional
+        Add FDSC with our Q's (:data:`OUR_Q_NAME`).
 
     Returns
     -------
-    dict
-        ``t`` (bin starts), ``z_lo``/``z_hi`` {controller: (k, 3) min/max per bin},
-        ``t_head``/``z_head`` (full resolution over ``[0, head]``), ``energy`` {controller:
-        ∫zᵀz dt}, ``l2`` {controller: (k,) running L2-induced norm at the bin starts} and its
-        min/max per bin ``l2_lo``/``l2_hi`` at the times ``t_l2`` (the ratio is undefined at
-        t = 0), ``l2_steady`` {fixed-gain controller: the limit of its running ratio, closed
-        form}, ``peak`` {controller: (3,) max |z_i| over the run}, ``switches`` and ``share``
-        of FDSC, ``horizon``, ``dt``.
+    StationaryRuns
+
+    Raises
+    ------
+    ValueError
+        If kind is not "LF" or "HF", or head is not positive.
+
+    Notes
+    -----
+    The controllers are PassC-EF (K_e), PassC-LF (K_f1), PassC-HF (K_f3) and FDSC (law of paper
+    eq. (31), paper's Q's), Sec. VI; the horizon is not printed (we use
+    :data:`~fdsc.paper.data.STATIONARY_HORIZON`).
     """
     d = paper_disturbance(kind)
     t = time_grid(horizon, dt)
-    names = list(CONTROLLERS) + (["FDSC (our Q)"] if with_our_q else [])
+    names = list(CONTROLLERS) + ([OUR_Q_NAME] if with_our_q else [])
     Qours = our_q().Q if with_our_q else None
     n_head = int(round(as_positive("head", head) / dt)) + 1
-    out = {"t": t[::every], "z_lo": {}, "z_hi": {}, "t_head": t[:n_head], "z_head": {},
-           "energy": {}, "l2": {}, "l2_lo": {}, "l2_hi": {}, "switches": {}, "share": {},
-           "every": every, "peak": {},
-           "l2_steady": {c: steady_state_gain(aircraft().closed_loop(paper_gains()[g]), d.frequencies,
-                                              d.amplitudes) for c, g in CONTROLLER_GAINS.items()},
-           "horizon": horizon, "dt": dt, "kind": kind, "input_energy": None}
+    z_lo, z_hi, z_head, energy, l2, l2_lo, l2_hi, peak, switches, share = ({} for _ in range(10))
+    l2_steady = {c: steady_state_gain(aircraft().closed_loop(paper_gains()[g]), d.frequencies,
+                                      d.amplitudes) for c, g in CONTROLLER_GAINS.items()}
+    t_l2, input_energy = None, None
     for name in names:
-        sim = run_controller("FDSC", d, t, Q=Qours) if name == "FDSC (our Q)" else run_controller(name, d, t)
-        _, out["z_lo"][name], out["z_hi"][name] = envelope(sim.t, sim.z, every)
-        out["z_head"][name] = sim.z[:n_head]
-        out["peak"][name] = np.abs(sim.z).max(axis=0)
-        out["energy"][name] = sim.energy()
-        l2 = _l2_norm_curve(sim)
-        out["l2"][name] = l2[::every]
-        out["t_l2"], out["l2_lo"][name], out["l2_hi"][name] = envelope(sim.t[1:], l2[1:], every)
-        out["input_energy"] = sim.input_energy()
+        sim = run_controller("FDSC", d, t, Q=Qours) if name == OUR_Q_NAME else run_controller(name, d, t)
+        _, z_lo[name], z_hi[name] = envelope(sim.t, sim.z, every)
+        z_head[name] = sim.z[:n_head]
+        peak[name] = np.abs(sim.z).max(axis=0)
+        energy[name] = sim.energy()
+        curve = _l2_norm_curve(sim)
+        l2[name] = curve[::every]
+        t_l2, l2_lo[name], l2_hi[name] = envelope(sim.t[1:], curve[1:], every)
+        input_energy = sim.input_energy()
         if name.startswith("FDSC"):
-            out["switches"][name] = int(sim.switch_times.size)
-            out["share"][name] = sim.time_share().tolist()
-    return out
+            switches[name] = int(sim.switch_times.size)
+            share[name] = sim.time_share().tolist()
+    return StationaryRuns(kind, horizon, dt, every, t[::every], z_lo, z_hi, t[:n_head], z_head,
+                          energy, input_energy, l2, t_l2, l2_lo, l2_hi, l2_steady, peak, switches,
+                          share)
 
 
-def step_halving(kind, *, horizon=100.0, dt=STATIONARY_DT):
-    """Energies and switch counts with dt and dt/2 for every controller (the law is sampled)."""
+@dataclass(frozen=True)
+class Claim:
+    """A sentence of the paper set against the number that decides it.
+
+    Parameters
+    ----------
+    sentence : str
+        The paper's words.
+    reading : str
+        How we read them: the criterion applied to ``value``.
+    value : float or tuple of float
+        The deciding number(s).
+    holds : bool
+        Whether the criterion holds.
+    """
+
+    sentence: str
+    reading: str
+    value: float | tuple
+    holds: bool
+
+    @property
+    def verdict(self) -> str:
+        """``"match"`` if the sentence holds, else ``"differs"``."""
+        return "match" if self.holds else "differs"
+
+    @property
+    def outcome(self) -> str:
+        """``"holds"`` or ``"fails"`` (the word the book prints)."""
+        return "holds" if self.holds else "fails"
+
+    def to_dict(self) -> dict:
+        """``{"sentence", "reading", "value", "holds", "verdict"}`` for the record.
+
+        Returns
+        -------
+        dict
+        """
+        return {"sentence": self.sentence, "reading": self.reading, "value": self.value,
+                "holds": self.holds, "verdict": self.verdict}
+
+
+def _claims_entry(id_, source, claims, note, **extra):
+    return entry(id_, source, [c.sentence for c in claims],
+                 {**{c.sentence: c.to_dict() for c in claims}, **extra},
+                 worst_verdict([c.verdict for c in claims]), note)
+
+
+def _check_kind(runs, kind):
+    if not isinstance(runs, StationaryRuns) or runs.kind != kind:
+        raise ValueError(f"runs must be the StationaryRuns of the {kind} disturbance, but found "
+                         f"{getattr(runs, 'kind', type(runs).__name__)!r}")
+
+
+@dataclass(frozen=True)
+class LFOutputClaims:
+    """The paper's sentences about paper Fig. 4 (LF disturbance) against our numbers.
+
+    Parameters
+    ----------
+    smallest, largest : str
+        The controllers (of the paper's four) with the smallest and the largest energy.
+    ratio_fdsc_lf : float
+        Energy of FDSC over that of PassC-LF.
+    ratio_hf_fdsc : float
+        Energy of PassC-HF over that of FDSC.
+    ratio_ours_lf : float
+        Energy of FDSC with our Q's over that of PassC-LF (NaN if not run).
+    peak_ratio_hf : (3,) ndarray
+        Peak |z_i| of PassC-HF over the larger peak of PassC-EF and PassC-LF, per output.
+    peak_ratio_fdsc_hf : (3,) ndarray
+        Peak |z_i| of FDSC over that of PassC-HF, per output.
+    claim_smallest, claim_thousand, claim_similar : Claim
+        "PassC-LF is the smallest"; "PassC-HF is up to a thousand times greater"; "FDSC …
+        similar to PassC-LF".
+    """
+
+    smallest: str
+    largest: str
+    ratio_fdsc_lf: float
+    ratio_hf_fdsc: float
+    ratio_ours_lf: float
+    peak_ratio_hf: np.ndarray
+    peak_ratio_fdsc_hf: np.ndarray
+    claim_smallest: Claim
+    claim_thousand: Claim
+    claim_similar: Claim
+
+    @property
+    def claims(self) -> tuple:
+        """The claims, in the paper's order."""
+        return (self.claim_smallest, self.claim_thousand, self.claim_similar)
+
+    def to_record(self) -> RecordPart:
+        """Record entry ``lf_outputs_claims``.
+
+        Returns
+        -------
+        RecordPart
+        """
+        return RecordPart((_claims_entry(
+            "lf_outputs_claims", "Sec. VI, text on paper Fig. 4", self.claims,
+            "energies and peak outputs of the runs of paper Fig. 4 (our horizon); each sentence "
+            "read as the stated criterion.",
+            energy_ratio_fdsc_to_passc_lf=self.ratio_fdsc_lf,
+            energy_ratio_passc_hf_to_fdsc=self.ratio_hf_fdsc,
+            energy_ratio_fdsc_our_q_to_passc_lf=self.ratio_ours_lf,
+            peak_ratio_fdsc_to_passc_hf=self.peak_ratio_fdsc_hf),))
+
+
+def lf_output_claims(runs: StationaryRuns) -> LFOutputClaims:
+    """Set the paper's sentences about paper Fig. 4 against the LF runs.
+
+    The paper: "the fluctuation range of PassC-LF is the smallest … PassC-HF is up to a
+    thousand times greater … FDSC provides pretty good anti-disturbance performance that is
+    similar to PassC-LF".
+
+    Parameters
+    ----------
+    runs : StationaryRuns
+        The runs of :func:`stationary_runs` under the LF disturbance (paper eq. (56)).
+
+    Returns
+    -------
+    LFOutputClaims
+
+    Raises
+    ------
+    ValueError
+        If runs are not those of the LF disturbance.
+    """
+    _check_kind(runs, "LF")
+    e, pk = runs.energy, runs.peak
+    four = {n: e[n] for n in CONTROLLERS}
+    smallest, largest = min(four, key=four.get), max(four, key=four.get)
+    ratio_fdsc_lf = e["FDSC"] / e["PassC-LF"]
+    # the fixed-gain lines; FDSC is discussed on its own
+    peak_ratio = pk["PassC-HF"] / np.max([pk[n] for n in ("PassC-EF", "PassC-LF")], axis=0)
+    next_smallest = min(v for n, v in four.items() if n != "PassC-LF")
+    smallest_claim, thousand, similar = (
+        Claim("the fluctuation range of PassC-LF is the smallest",
+              "PassC-LF has the smallest energy of the four controllers (value: the next "
+              "smallest energy over PassC-LF's)", next_smallest / e["PassC-LF"],
+              smallest == "PassC-LF"),
+        Claim("PassC-HF is up to a thousand times greater",
+              "the largest ratio of PassC-HF's peak output to the larger of PassC-EF's and "
+              "PassC-LF's lies between 300 and 3000", float(peak_ratio.max()),
+              bool(300 <= peak_ratio.max() <= 3000)),
+        Claim("FDSC provides pretty good anti-disturbance performance that is similar to PassC-LF",
+              "FDSC's energy within a factor 2 of PassC-LF's", ratio_fdsc_lf,
+              bool(ratio_fdsc_lf <= 2)),
+    )
+    return LFOutputClaims(smallest, largest, ratio_fdsc_lf, e["PassC-HF"] / e["FDSC"],
+                          e[OUR_Q_NAME] / e["PassC-LF"] if OUR_Q_NAME in e else np.nan,
+                          peak_ratio, pk["FDSC"] / pk["PassC-HF"], smallest_claim, thousand, similar)
+
+
+@dataclass(frozen=True)
+class HFOutputClaims:
+    """The paper's sentences about paper Fig. 5 (HF disturbance) against our numbers.
+
+    Parameters
+    ----------
+    q_peak : dict
+        ``{controller: max |q|}`` over the run for the paper's four controllers (q = z_1 / 4).
+    q_ratio : float
+        Largest over smallest of ``q_peak``.
+    ratio_fdsc_hf : float
+        Energy of FDSC over that of PassC-HF.
+    claim_range, claim_coincident : Claim
+        "the fluctuation range of these lines is less than 0.15"; "the four lines are almost
+        coincident".
+    """
+
+    q_peak: dict
+    q_ratio: float
+    ratio_fdsc_hf: float
+    claim_range: Claim
+    claim_coincident: Claim
+
+    @property
+    def claims(self) -> tuple:
+        """The claims, in the order of :meth:`to_record`."""
+        return (self.claim_range, self.claim_coincident)
+
+    @property
+    def q_min(self) -> float:
+        """Smallest peak of |q| over the four controllers."""
+        return min(self.q_peak.values())
+
+    @property
+    def q_max(self) -> float:
+        """Largest peak of |q| over the four controllers."""
+        return max(self.q_peak.values())
+
+    def to_record(self) -> RecordPart:
+        """Record entry ``hf_outputs_claims``.
+
+        Returns
+        -------
+        RecordPart
+        """
+        return RecordPart((_claims_entry(
+            "hf_outputs_claims", "Sec. VI, text on paper Fig. 5", self.claims,
+            "peak |q| (paper Fig. 5 a plots q; z_1 = 4q) of the runs of paper Fig. 5 (our "
+            "horizon); each sentence read as the stated criterion.",
+            q_peak=self.q_peak, energy_ratio_fdsc_to_passc_hf=self.ratio_fdsc_hf),))
+
+
+def hf_output_claims(runs: StationaryRuns) -> HFOutputClaims:
+    """Set the paper's sentences about paper Fig. 5 against the HF runs.
+
+    The paper: "the four lines are almost coincident and the fluctuation range of these lines
+    is less than 0.15".
+
+    Parameters
+    ----------
+    runs : StationaryRuns
+        The runs of :func:`stationary_runs` under the HF disturbance (paper eq. (57)).
+
+    Returns
+    -------
+    HFOutputClaims
+
+    Raises
+    ------
+    ValueError
+        If runs are not those of the HF disturbance.
+    """
+    _check_kind(runs, "HF")
+    # the paper's Fig. 5 a plots q itself; z_1 = 4q
+    q = {n: float(runs.peak[n][0]) / 4 for n in CONTROLLERS}
+    q_ratio = max(q.values()) / min(q.values())
+    in_range, coincident = (
+        Claim("the fluctuation range of these lines is less than 0.15",
+              "the largest peak of |q| over the four controllers is below 0.15",
+              max(q.values()), bool(max(q.values()) < 0.15)),
+        Claim("the four lines are almost coincident",
+              "the largest peak of |q| is within a factor 1.5 of the smallest", q_ratio,
+              bool(q_ratio <= 1.5)),
+    )
+    return HFOutputClaims(q, q_ratio, runs.energy["FDSC"] / runs.energy["PassC-HF"], in_range,
+                          coincident)
+
+
+@dataclass(frozen=True)
+class L2Claims:
+    """The paper's sentence about paper Fig. 6 (L2-induced norm, HF) against our numbers.
+
+    Parameters
+    ----------
+    final : dict
+        ``{controller: running L2-induced norm at the horizon}``.
+    ratios : (4,) ndarray
+        Norms of PassC-EF and PassC-LF over those of PassC-HF and FDSC (EF/HF, EF/FDSC, LF/HF,
+        LF/FDSC).
+    slow_pole_hf : float
+        Real part of the slowest pole of the PassC-HF loop.
+    fdsc_beats_hf : str
+        Whether FDSC's norm is below PassC-HF's: ``"at this horizon only"``, ``"also against
+        the steady state"`` or ``"not even at this horizon"``.
+    claim_twice : Claim
+        "… nearly twice that of PassC-HF and FDSC".
+    """
+
+    final: dict
+    ratios: np.ndarray
+    slow_pole_hf: float
+    fdsc_beats_hf: str
+    claim_twice: Claim
+
+    @property
+    def claims(self) -> tuple:
+        """The claims (one)."""
+        return (self.claim_twice,)
+
+    @property
+    def time_constant_hf(self) -> float:
+        """Time constant ``−1/slow_pole_hf`` of the PassC-HF loop in s."""
+        return -1.0 / self.slow_pole_hf
+
+    def to_record(self) -> RecordPart:
+        """Record entry ``hf_l2_claims``.
+
+        Returns
+        -------
+        RecordPart
+        """
+        return RecordPart((_claims_entry(
+            "hf_l2_claims", "Sec. VI, text on paper Fig. 6", self.claims,
+            "running L2-induced norms at the horizon of the runs of paper Fig. 6; PassC-HF's "
+            "slowest pole keeps its start-up transient in the ratio at that horizon, so FDSC's "
+            "advantage over PassC-HF is compared with PassC-HF's steady-state limit too.",
+            l2_final=self.final, passc_hf_slowest_pole=self.slow_pole_hf,
+            fdsc_below_passc_hf=self.fdsc_beats_hf),))
+
+
+def hf_l2_claims(runs: StationaryRuns) -> L2Claims:
+    """Set the paper's sentence about paper Fig. 6 against the HF runs.
+
+    The paper: "the L2 induced norm of PassC-EF and PassC-LF is nearly twice that of PassC-HF
+    and FDSC".
+
+    Parameters
+    ----------
+    runs : StationaryRuns
+        The runs of :func:`stationary_runs` under the HF disturbance (paper eq. (57)).
+
+    Returns
+    -------
+    L2Claims
+
+    Raises
+    ------
+    ValueError
+        If runs are not those of the HF disturbance.
+    """
+    _check_kind(runs, "HF")
+    final = runs.l2_final
+    ratios = np.array([final[a] / final[b] for a in ("PassC-EF", "PassC-LF")
+                       for b in ("PassC-HF", "FDSC")])
+    slow = float(aircraft().closed_loop(paper_gains()[CONTROLLER_GAINS["PassC-HF"]]).poles().real.max())
+    beats_now = final["FDSC"] < final["PassC-HF"]
+    beats_limit = final["FDSC"] < runs.l2_steady["PassC-HF"]
+    beats = ("at this horizon only" if beats_now and not beats_limit else
+             ("also against the steady state" if beats_now else "not even at this horizon"))
+    twice = Claim("the L2 induced norm of PassC-EF and PassC-LF is nearly twice that of PassC-HF "
+                  "and FDSC", "every ratio of the four lies in [1.5, 2.5]",
+                  (float(ratios.min()), float(ratios.max())),
+                  bool(np.all((ratios >= 1.5) & (ratios <= 2.5))))
+    return L2Claims(final, ratios, slow, beats, twice)
+
+
+@dataclass(frozen=True)
+class HalvingRow:
+    """Energy and switch count of one controller with the step dt and dt/2.
+
+    Parameters
+    ----------
+    controller : str
+        One of the paper's four controllers.
+    energy_dt, energy_dt2 : float
+        ∫zᵀz with dt and with dt/2.
+    switches_dt, switches_dt2 : int
+        Number of switches with dt and with dt/2.
+    """
+
+    controller: str
+    energy_dt: float
+    energy_dt2: float
+    switches_dt: int
+    switches_dt2: int
+
+    @property
+    def rel_change(self) -> float:
+        """``|E(dt/2) − E(dt)| / |E(dt)|``."""
+        return abs(self.energy_dt2 - self.energy_dt) / abs(self.energy_dt)
+
+
+@dataclass(frozen=True)
+class StepHalving:
+    """Energies and switch counts with dt and dt/2 (see :func:`step_halving`).
+
+    Parameters
+    ----------
+    kind : {"LF", "HF"}
+        The disturbance.
+    horizon, dt : float
+        Run length and the coarser step in s.
+    controllers : tuple of HalvingRow
+        One per controller.
+    """
+
+    kind: str
+    horizon: float
+    dt: float
+    controllers: tuple
+
+    @property
+    def max_rel_change(self) -> float:
+        """Largest relative change of an energy."""
+        return max(r.rel_change for r in self.controllers)
+
+    def row(self, controller: str) -> HalvingRow:
+        """The row of one controller.
+
+        Parameters
+        ----------
+        controller : str
+            One of the paper's four controllers.
+
+        Returns
+        -------
+        HalvingRow
+        """
+        for r in self.controllers:
+            if r.controller == controller:
+                return r
+        raise KeyError(f"controller must be one of {[r.controller for r in self.controllers]}, "
+                       f"but found {controller!r}")
+
+    def rows(self) -> list:
+        """One row per controller (for :func:`fdsc.paper.report.html_table`).
+
+        Returns
+        -------
+        list of dict
+            ``disturbance, controller, energy_dt, energy_dt2, rel_change, switches_dt,
+            switches_dt2``.
+        """
+        return [{"disturbance": self.kind, "controller": r.controller, "energy_dt": r.energy_dt,
+                 "energy_dt2": r.energy_dt2, "rel_change": r.rel_change,
+                 "switches_dt": r.switches_dt, "switches_dt2": r.switches_dt2}
+                for r in self.controllers]
+
+    def to_record(self) -> RecordPart:
+        """Record entry ``step_halving_lf`` or ``step_halving_hf`` (new).
+
+        Returns
+        -------
+        RecordPart
+        """
+        rec = {r.controller: {"rel_change": r.rel_change, "switches_dt": r.switches_dt,
+                              "switches_dt2": r.switches_dt2} for r in self.controllers}
+        return RecordPart((entry(
+            f"step_halving_{self.kind.lower()}", f"our check (step dt and dt/2, {self.kind} "
+            "disturbance; nothing printed)", None, rec, "new",
+            f"{self.horizon:g} s runs with dt = {self.dt:g} s and dt/2: relative change of the "
+            "energy (quadrature error for the fixed gains; the sampled law for FDSC) and the "
+            "switch counts (a count that scales with the sampling rate is chattering).",
+            max_rel_change=self.max_rel_change),))
+
+
+@cached
+def step_halving(kind: str, *, horizon: float = 100.0, dt: float = STATIONARY_DT) -> StepHalving:
+    """Energies and switch counts with dt and dt/2 for every controller (the law is sampled).
+
+    Parameters
+    ----------
+    kind : {"LF", "HF"}
+        The paper's LF (paper eq. (56)) or HF (paper eq. (57)) disturbance.
+    horizon, dt : float, optional
+        Run length and the coarser step in s.
+
+    Returns
+    -------
+    StepHalving
+    """
     d = paper_disturbance(kind)
     rows = []
     for name in CONTROLLERS:
         s1 = run_controller(name, d, time_grid(horizon, dt))
         s2 = run_controller(name, d, time_grid(horizon, dt / 2))
-        e1, e2 = s1.energy(), s2.energy()
-        rows.append({"controller": name, "energy_dt": e1, "energy_dt2": e2,
-                     "rel_change": abs(e2 - e1) / abs(e1), "switches_dt": int(s1.switch_times.size),
-                     "switches_dt2": int(s2.switch_times.size)})
-    return rows
+        rows.append(HalvingRow(name, s1.energy(), s2.energy(), int(s1.switch_times.size),
+                               int(s2.switch_times.size)))
+    return StepHalving(kind, float(horizon), float(dt), tuple(rows))
 
 
-def record_part():
-    """Record figures lf_outputs, hf_outputs (paper Figs. 4 and 5: energies and switch counts) and
-    hf_l2 (paper Fig. 6: the L2-induced norm).
+def record_part() -> RecordPart:
+    """Record figures and entries of the chapter.
+
+    Figures ``lf_outputs``, ``hf_outputs`` (paper Figs. 4 and 5: energies and switch counts) and
+    ``hf_l2`` (paper Fig. 6: the L2-induced norm); entries ``lf_outputs_claims``,
+    ``hf_outputs_claims``, ``hf_l2_claims`` (the paper's sentences about these figures),
+    ``step_halving_lf`` and ``step_halving_hf`` (new).
 
     Returns
     -------
     RecordPart
     """
-    figures = {}
-    for fig, kind in (("lf_outputs", "LF"), ("hf_outputs", "HF")):
-        runs = stationary_runs(kind)
-        figures[fig] = {"paper_figure": FIGURE_IDS[fig], "disturbance": kind,
-                        "horizon": STATIONARY_HORIZON, "dt": STATIONARY_DT,
-                        "energy": {k: v for k, v in runs["energy"].items() if k != "FDSC (our Q)"},
-                        "energy_fdsc_our_q": runs["energy"]["FDSC (our Q)"],
-                        "switches": runs["switches"],
-                        "units": {"horizon": "s", "dt": "s",
-                                  "energy": "integral of z'z over [0, horizon] (z as printed, s)"}}
-        if kind == "HF":
-            figures["hf_l2"] = {
-                "paper_figure": FIGURE_IDS["hf_l2"], "horizon": STATIONARY_HORIZON,
-                "l2_induced_norm_final": {k: float(v[-1]) for k, v in runs["l2"].items()},
-                "l2_induced_norm_steady_state": runs["l2_steady"],
-                "units": {"horizon": "s", "l2_induced_norm": "1 (sqrt of an energy ratio)"},
-                "note": "running ratio from rest at the horizon; steady state = its limit for the "
-                        "fixed gains (closed form); FDSC has no closed form"}
-    return RecordPart(figures=figures)
+    lf, hf = stationary_runs("LF"), stationary_runs("HF")
+    return (lf.to_record() + hf.to_record() + lf_output_claims(lf).to_record()
+            + hf_output_claims(hf).to_record() + hf_l2_claims(hf).to_record()
+            + step_halving("LF").to_record() + step_halving("HF").to_record())

@@ -1,39 +1,127 @@
 import numpy as np
 import pytest
+from numpy.testing import assert_allclose
 
-from fdsc import LTISystem, Sinusoids
+from fdsc import LTISystem, band_peak, sigma_max
+from fdsc.paper.data import aircraft, paper_bands, paper_data, paper_gains
 from fdsc.paper.gkyp_lemma import (
+    GainBandTable,
+    GammaSlip,
+    GammaSquaredCheck,
+    PrintedBounds,
+    gain_band_table,
     gamma_vs_gamma_squared,
     in_band_gamma_slip,
     printed_bounds,
+    record_part,
     windowed_tone_ratio,
 )
+from fdsc.paper.names import GAIN_ORDER
+from fdsc.paper.results import RecordPart
+from fdsc.paper.verdict import VERDICTS
 
-LF_SIGNAL = Sinusoids([1.0, 1.0, 1.0], [0.1, 0.2, 0.3])
+
+def _check_part(part, ids):
+    assert isinstance(part, RecordPart)
+    assert [e["id"] for e in part.entries] == ids
+    for e in part.entries:
+        assert {"id", "source", "paper", "recomputed", "verdict", "note"} <= e.keys()
+        assert e["verdict"] in VERDICTS
 
 
-def test_printed_bounds_rows():
-    rows = printed_bounds()
-    assert [r["gain"] for r in rows] == ["K_f1", "K_f2", "K_f3", "K_e"]
-    assert rows[1]["verdict"] == "close"  # K_f2: 0.4025 printed, 0.40279 recomputed
+@pytest.fixture(scope="module")
+def table():
+    return gain_band_table()
+
+
+def test_gain_band_table_is_lossless(table):
+    assert isinstance(table, GainBandTable)
+    assert len(table.pairs) == 16
+    assert [(p.gain, p.band) for p in table.pairs[:4]] == [("K_f1", b) for b in ("LF", "MF", "HF", "EF")]
+    # the gKYP lemma is lossless: certificate and sweep agree, every certificate is strict
+    assert table.worst_rel_diff < 1e-4
+    assert table.max_max_eig < 0
+    for p in table.pairs:
+        assert p.rel_diff == pytest.approx((p.lmi_gamma - p.peak) / p.peak, rel=1e-12)
+        assert p.slowest_pole < 0 and p.fastest_pole <= p.slowest_pole
+
+
+def test_gain_band_table_against_an_independent_sweep(table):
+    # a dense grid (no refinement) can only undershoot the refined peak, and by little
+    plant, gains = aircraft(), paper_gains()
+    w = np.concatenate([[0.0], np.geomspace(1e-4, 1.0, 4001)])
+    for name in GAIN_ORDER:
+        grid_peak = sigma_max(plant.closed_loop(gains[name]), w).max()
+        peak = table.pair(name, "LF").peak
+        assert grid_peak <= peak * (1 + 1e-9)
+        assert grid_peak == pytest.approx(peak, rel=1e-4)
+
+
+def test_gain_band_table_lookups(table):
+    nested = table.by_gain_band("peak")
+    assert list(nested) == list(GAIN_ORDER)
+    assert nested["K_f2"]["MF"] == table.pair("K_f2", "MF").peak
+    assert {"gain", "band", "peak", "lmi_gamma", "poles"} <= table.rows()[0].keys()
+    with pytest.raises(KeyError, match="no pair"):
+        table.pair("K_f1", "XF")
+
+
+def test_printed_bounds_rows(table):
+    pb = printed_bounds(table)
+    assert isinstance(pb, PrintedBounds)
+    assert [b.gain for b in pb.bounds] == ["K_f1", "K_f2", "K_f3", "K_e"]
+    assert pb["K_f2"].verdict == "close"  # K_f2: 0.4025 printed, 0.40279 recomputed
+    ctrl = paper_data("controllers")
+    for b in pb.bounds:
+        assert b.paper == ctrl[b.gain]["bound"]
+        assert b.ratio == pytest.approx(b.paper / b.peak, rel=1e-15)
+
+
+def test_table_record_entries(table):
+    part = table.to_record()
+    _check_part(part, ["sigma_peak", "lemma1_gamma"])
+    sigma_peak = part.entries[0]
+    assert sigma_peak["verdicts"]["K_f2"] == "close"
+    assert sigma_peak["recomputed"]["K_f3"]["HF"] == table.pair("K_f3", "HF").peak
 
 
 def test_gamma_squared_not_gamma_bounds_the_energy_ratio():
-    rows = {r["gain"]: r for r in gamma_vs_gamma_squared()}
-    kf3 = rows["K_f3"]
-    assert kf3["simulated_ratio"] > kf3["gamma_lf"]  # statement (2) as printed fails
-    assert kf3["simulated_ratio"] < kf3["gamma_sq"]
+    r = gamma_vs_gamma_squared()
+    assert isinstance(r, GammaSquaredCheck)
+    kf3 = r["K_f3"]
+    assert kf3.simulated_ratio > kf3.gamma_lf  # statement (2) as printed fails
+    assert kf3.simulated_ratio < kf3.gamma_sq
+    assert not kf3.bound_gamma_holds and kf3.bound_gamma_sq_holds
     # a slowly windowed tone: energy ratio → |G(jω0)|²
-    for r in rows.values():
-        assert abs(r["simulated_ratio"] - r["gain_at_omega0_sq"]) < 1e-3 * r["gain_at_omega0_sq"]
+    for t in r.tones:
+        assert t.rel_to_tone_gain < 1e-3
+    part = r.to_record()
+    _check_part(part, ["lemma1_gamma_squared"])
+    assert part.entries[0]["verdict"] == "differs"
+
+
+def test_gamma_vs_gamma_squared_rejects_an_out_of_band_tone():
+    with pytest.raises(ValueError, match="omega0"):
+        gamma_vs_gamma_squared(5.0)
 
 
 def test_windowed_tone_ratio_of_a_first_order_lag():
     # |1/(jω + 2)|² = 1/(ω² + 4) at ω = 3: 1/13
     sys = LTISystem([[-2.0]], [[1.0]], [[1.0]], [[0.0]])
     r = windowed_tone_ratio(sys, 3.0, tau=40.0, dt=0.02)
-    assert r["gain_sq"] == pytest.approx(1 / 13, rel=1e-12)
-    assert r["ratio"] == pytest.approx(1 / 13, rel=1e-3)
+    assert r.gain_sq == pytest.approx(1 / 13, rel=1e-12)
+    assert r.ratio == pytest.approx(1 / 13, rel=1e-3)
+    assert (r.omega0, r.tau, r.dt) == (3.0, 40.0, 0.02)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"tau": -1.0, "dt": 0.1}, "tau"),
+    ({"tau": 10.0, "dt": 0.0}, "dt"),
+])
+def test_windowed_tone_ratio_rejects_bad_numbers(kwargs, match):
+    sys = LTISystem([[-2.0]], [[1.0]], [[1.0]], [[0.0]])
+    with pytest.raises(ValueError, match=match):
+        windowed_tone_ratio(sys, 1.0, **kwargs)
 
 
 def test_windowed_tone_ratio_rejects_two_inputs():
@@ -44,10 +132,29 @@ def test_windowed_tone_ratio_rejects_two_inputs():
 
 def test_in_band_gamma_slip_ratio_is_the_tone_gain_squared():
     r = in_band_gamma_slip()
-    assert r["ratio"] == pytest.approx(r["gain_sq"], rel=1e-3)
-    assert r["gamma"] < r["ratio"] < r["gamma_sq"]
+    assert isinstance(r, GammaSlip)
+    assert r.ratio == pytest.approx(r.gain_sq, rel=1e-3)
+    assert r.gamma < r.ratio < r.gamma_sq
+    assert r.excess == pytest.approx(r.ratio - r.gamma, rel=1e-15)
+    # γ recomputed independently from the band peak of the printed K_f3 on Ω_3
+    cl = aircraft().closed_loop(paper_gains()["K_f3"])
+    assert_allclose(r.gamma, band_peak(cl, paper_bands()["HF"]).gamma, rtol=1e-12)
+    assert_allclose(r.sigma_at_omega0, sigma_max(cl, [r.omega0])[0], rtol=1e-12)
+    part = r.to_record()
+    _check_part(part, ["gamma_slip_in_band"])
+    assert part.entries[0]["verdict"] == "differs"
 
 
-def test_in_band_gamma_slip_rejects_an_out_of_band_tone():
-    with pytest.raises(ValueError, match="omega0"):
-        in_band_gamma_slip(omega0=5.0)
+@pytest.mark.parametrize("kwargs, match", [
+    ({"omega0": 5.0}, "omega0"),
+    ({"gain": "K_x"}, "gain"),
+    ({"kind": "XF"}, "kind"),
+])
+def test_in_band_gamma_slip_rejects_bad_input(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        in_band_gamma_slip(**kwargs)
+
+
+def test_record_part_ids():
+    _check_part(record_part(), ["sigma_peak", "lemma1_gamma", "lemma1_gamma_squared",
+                                "gamma_slip_in_band"])

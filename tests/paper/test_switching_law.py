@@ -1,0 +1,63 @@
+import numpy as np
+import pytest
+
+from fdsc.paper.data import our_q, paper_modes, piecewise_disturbance, run_controller
+from fdsc.paper.results import RecordPart
+from fdsc.paper.switching_law import law_conflict, record_part, switching_statistics
+from fdsc.paper.verdict import VERDICTS
+from fdsc.simulate import time_grid
+
+
+@pytest.fixture(scope="module")
+def stats():
+    return switching_statistics(T=5.0, rho_t=0.2)
+
+
+@pytest.mark.parametrize("which", ["paper", "ours"])
+def test_every_sample_in_the_conflict_region_is_a_switch(which):
+    # with the measured xdot, in the region the active mode's own score prefers another mode,
+    # so the simulated law must switch there: region samples = switches taken in the region
+    pm = paper_modes()
+    Q = pm["Q"] if which == "paper" else our_q().Q
+    d = piecewise_disturbance(5.0, 0.2, 0.1)
+    t = time_grid(d.breaks[-1], 1e-3)
+    sim = run_controller("FDSC", d, t, Q=Q)
+    c = law_conflict(sim, pm["modes"], pm["bands"], Q)
+    assert c.n_switches == int(np.count_nonzero(np.diff(sim.sigma)))
+    assert 0.0 <= c.in_region <= 1.0 and 0.0 <= c.switches_in_region <= 1.0
+    assert round(c.in_region * t.size) == round(c.switches_in_region * c.n_switches)
+
+
+def test_switching_statistics_variants(stats):
+    assert list(stats.variants) == ["paper Q, measured ẋ", "paper Q, candidate ẋ", "our Q, measured ẋ"]
+    assert stats.breaks.tolist() == [0.0, 5.0, 6.0, 11.0]
+    assert (stats.T, stats.rho_t, stats.rho_p_star) == (5.0, 0.2, 0.1)
+    for v in stats.variants.values():
+        assert v.sigma.shape == stats.t.shape
+        assert np.all((v.sigma >= 0) & (v.sigma <= 1))
+        assert len(v.share_hf) == 3 and all(0.0 <= s <= 1.0 for s in v.share_hf)
+        assert 0.0 <= v.single_sample_dwell <= 1.0 and v.energy > 0
+        assert (v.conflict is None) == (v.law == "candidate")
+        if v.conflict is not None:
+            assert v.conflict.n_switches == v.switches
+
+
+def test_switching_statistics_rows_and_record(stats):
+    rows = stats.rows()
+    assert [r["law"] for r in rows] == list(stats.variants)
+    assert [r["switches"] for r in rows] == [v.switches for v in stats.variants.values()]
+    part = stats.to_record()
+    assert isinstance(part, RecordPart)
+    (e,) = part.entries
+    assert e["id"] == "law_chattering" and e["verdict"] in VERDICTS
+    assert "in_conflict_region" not in e["recomputed"]["paper Q, candidate ẋ"]
+    assert "in_conflict_region" in e["recomputed"]["paper Q, measured ẋ"]
+
+
+def test_record_part_is_the_default_statistics():
+    assert [e["id"] for e in record_part().entries] == ["law_chattering"]
+
+
+def test_bad_piecewise_input():
+    with pytest.raises(ValueError, match=r"rho_t must be >= 0"):
+        switching_statistics(T=5.0, rho_t=-0.1)
