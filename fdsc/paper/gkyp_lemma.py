@@ -19,7 +19,7 @@ from .data import (
     paper_gains,
 )
 from .names import BAND_ORDER, GAIN_ORDER
-from .results import RecordPart, entry
+from .results import RecordPart, entry, pick
 from .verdict import verdict, worst_verdict
 
 __all__ = [
@@ -309,7 +309,7 @@ class PrintedBounds:
         -------
         PrintedBound
         """
-        return next(b for b in self.bounds if b.gain == gain)
+        return pick(self.bounds, "gain", gain)
 
 
 def printed_bounds(table: GainBandTable | None = None) -> PrintedBounds:
@@ -490,7 +490,7 @@ class GammaSquaredCheck:
         -------
         ToneCheck
         """
-        return next(t for t in self.tones if t.gain == gain)
+        return pick(self.tones, "gain", gain)
 
     def to_record(self) -> RecordPart:
         """Record entry ``lemma1_gamma_squared``: the energy ratio against γ and γ².

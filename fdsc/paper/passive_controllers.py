@@ -23,7 +23,7 @@ from .data import (
     paper_gains,
 )
 from .names import FDSC_IN_BAND, FIGURE_IDS, GAIN_BANDS, GAIN_ORDER
-from .results import RecordPart, entry
+from .results import RecordPart, entry, pick
 from .verdict import verdict
 
 __all__ = [
@@ -270,7 +270,7 @@ class GainComparison:
         -------
         GainRow
         """
-        return next(g for g in self.gains if g.name == name)
+        return pick(self.gains, "name", name)
 
     def rows(self) -> list:
         """One row per gain, gains printed to 4 decimals (for
@@ -856,7 +856,7 @@ class BoundCandidates:
         -------
         BoundRow
         """
-        return next(b for b in self.bounds if b.gain == gain)
+        return pick(self.bounds, "gain", gain)
 
     @property
     def n_candidates(self) -> int:

@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 
 from .verdict import VERDICTS
 
-__all__ = ["RecordPart", "entry"]
+__all__ = ["RecordPart", "entry", "pick"]
 
 _REQUIRED = ("id", "source", "paper", "recomputed", "verdict", "note")
 
@@ -101,3 +101,38 @@ class RecordPart:
         if dup or dup_fig:
             raise ValueError(f"other: duplicate entry ids {sorted(dup)} or figures {sorted(dup_fig)}")
         return RecordPart(self.entries + other.entries, {**self.figures, **other.figures})
+
+
+def pick(items, attr, value):
+    """The item of ``items`` whose attribute ``attr`` equals ``value`` (row lookup by name).
+
+    Parameters
+    ----------
+    items : iterable
+        Rows of a result (dataclasses).
+    attr : str
+        Name of the key attribute (e.g. ``"gain"``).
+    value : object
+        The key looked for.
+
+    Returns
+    -------
+    object
+        The first matching row.
+
+    Raises
+    ------
+    KeyError
+        Naming the key and the keys available.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace as R
+    >>> pick([R(gain="K_f1", v=1), R(gain="K_f3", v=3)], "gain", "K_f3").v
+    3
+    """
+    items = list(items)
+    for item in items:
+        if getattr(item, attr) == value:
+            return item
+    raise KeyError(f"{attr} {value!r} not found; available: {[getattr(i, attr) for i in items]}")

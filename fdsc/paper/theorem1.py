@@ -22,7 +22,7 @@ from .data import (
     paper_modes,
     run_controller,
 )
-from .results import RecordPart, entry
+from .results import RecordPart, entry, pick
 
 __all__ = [
     "record_part",
@@ -615,7 +615,7 @@ class Statement2Check:
         -------
         float
         """
-        return next(c.bound for c in self.cases if c.q_label == q_label)
+        return pick(self.cases, "q_label", q_label).bound
 
     def rows(self) -> list:
         """One row per run: ``disturbance, Q's, max ratio, mean ratio, bound max γ²``.
