@@ -41,8 +41,9 @@ from .frequency import BandPeak, band_peak, freqresp, sigma_max, steady_state_ga
 from .lmi import GKYPResult, gkyp_certify, gkyp_gamma
 from .plant import LTISystem, Plant, as_plant, as_system
 from .random_systems import random_hurwitz, random_plant, random_spd, random_system
-from .signals import LocalizedDominance, Piecewise, Sinusoids, dominance_degree, localized_dominance
+from .signals import LocalizedDominance, Piecewise, Sampled, Sinusoids, dominance_degree, localized_dominance
 from .simulate import SimResult, envelope, simulate, time_grid
+from .stream import BatchResult, Case, StreamResult, Trace, simulate_batch, simulate_stream
 from .switching import Theorem1Result, certify_q, design_q
 from .synthesis import SynthesisResult, optimize_gain, synthesize, synthesize_hinf
 
@@ -64,8 +65,9 @@ __all__ = [
     # Theorem 1 and the FDSC design
     "Theorem1Result", "certify_q", "design_q", "FDSC",
     # signals and simulation
-    "Sinusoids", "Piecewise", "dominance_degree", "localized_dominance", "LocalizedDominance",
-    "SimResult", "simulate", "time_grid", "envelope",
+    "Sinusoids", "Piecewise", "Sampled", "dominance_degree", "localized_dominance",
+    "LocalizedDominance", "SimResult", "simulate", "time_grid", "envelope",
+    "Case", "Trace", "StreamResult", "BatchResult", "simulate_stream", "simulate_batch",
     # seeded random systems
     "random_hurwitz", "random_system", "random_plant", "random_spd",
     # exceptions

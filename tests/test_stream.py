@@ -1,0 +1,276 @@
+"""The streaming, batch simulator against the exact simulator with full traces and closed forms."""
+
+import tracemalloc
+import warnings
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+from scipy.integrate import simpson
+
+from fdsc import Band, LTISystem, Piecewise, Sampled, Sinusoids
+from fdsc.exceptions import UnstableError, UnstableRunWarning
+from fdsc.paper.data import hf_disturbance, mixed_disturbance, paper_modes, piecewise_disturbance
+from fdsc.random_systems import random_hurwitz, random_spd
+from fdsc.simulate import simulate, time_grid
+from fdsc.stream import PHASOR_BLOCK, Case, simulate_batch, simulate_stream
+
+SCALAR = LTISystem([[-1.0]], [[1.0]], [[1.0]], [[0.0]])
+
+
+def full_and_stream(modes, d, horizon, dt, **kw):
+    law = {k: kw.pop(k) for k in ("law_bands", "law_Q", "law", "x0") if k in kw}
+    old = simulate(modes, d, time_grid(horizon, dt), **law)
+    new = simulate_stream(modes, d, horizon, dt, **law, **kw)
+    return old, new
+
+
+def dwell_lengths(sigma):
+    change = np.flatnonzero(np.diff(sigma) != 0) + 1
+    return np.diff(np.concatenate([[0], change]))
+
+
+@pytest.mark.parametrize("law", ["previous", "candidate"])
+@pytest.mark.parametrize("kind", ["mixed", "piecewise"])
+def test_switched_run_equals_the_full_exact_simulation(law, kind):
+    # the paper's FDSC chatters under the "previous" law (thousands of switches): every one of
+    # them must be reproduced, and the energies to rounding
+    pm = paper_modes()
+    d = mixed_disturbance(0.1) if kind == "mixed" else piecewise_disturbance(20.0, 0.5, 0.1)
+    horizon = 40.0 if kind == "mixed" else float(d.breaks[-1])
+    old, new = full_and_stream(pm["modes"], d, horizon, 1e-3, law_bands=pm["bands"], law_Q=pm["Q"],
+                               law=law, x0=[0.01, -0.02], trace_every=1e-3, dwell_edges=[1e-3, 2e-3, 100.0])
+    if law == "previous":
+        assert new.switches > 500
+    assert new.switches == old.switch_times.size
+    assert_allclose(new.time_share, old.time_share(), rtol=0, atol=1e-15)
+    assert_allclose(new.energy, old.energy(), rtol=1e-11)
+    assert_allclose(new.input_energy, old.input_energy(), rtol=1e-12)
+    assert_allclose(new.x_final, old.x[-1], rtol=0, atol=1e-12 * np.abs(old.x).max())
+    # a one-sample trace holds every sample: the state to rounding and the mode exactly
+    assert_allclose(new.trace.x_lo, old.x, rtol=0, atol=1e-12 * np.abs(old.x).max())
+    assert np.array_equal(np.argmax(new.trace.share, axis=1), old.sigma)
+    lengths = dwell_lengths(old.sigma)        # completed dwells (each ended by a switch)
+    assert new.dwell_counts.tolist() == [int(np.sum(lengths == 1)), int(np.sum(lengths >= 2))]
+    assert new.dwell_counts.sum() == new.switches
+
+
+def test_piecewise_with_silent_parts_and_a_break_at_the_horizon():
+    # d = 0 before 0.5 s and from 2 s on (the last point is a break: d(t_N) = 0 there)
+    d = Piecewise([0.5, 1.25, 2.0], [Sinusoids([1.0, 0.5], [3.0, 40.0]), Sinusoids([2.0], [0.0], [1.0])])
+    old, new = full_and_stream(SCALAR, d, 2.0, 1e-3, trace_every=1e-3, x0=[0.3])
+    assert_allclose(new.trace.d_lo, old.d, rtol=0, atol=1e-14)
+    assert new.trace.d_lo[-1] == 0.0 and old.d[-1] == 0.0
+    assert_allclose(new.trace.x_lo[:, 0], old.x[:, 0], rtol=0, atol=1e-14)
+    assert_allclose(new.energy, old.energy(), rtol=1e-13)
+
+
+def test_no_drift_over_a_million_steps_against_the_closed_form():
+    # x' = −x + sin(ω t + φ): x(t) = Im(e^{j(ωt+φ)} / (1 + jω)) + e^{−t}(x0 − Im(e^{jφ} / (1 + jω)))
+    w, ph, x0 = 7.3, 0.4, 0.25
+    horizon, dt = 2000.0, 2e-3          # 1e6 steps, about 2000 blocks of rotated phasors
+    run = simulate_stream(SCALAR, Sinusoids([1.0], [w], [ph]), horizon, dt, x0=[x0])
+    X = 1 / (1 + 1j * w)
+    exact = (X * np.exp(1j * (w * horizon + ph))).imag + np.exp(-horizon) * (x0 - (X * np.exp(1j * ph)).imag)
+    # the phase ω t is known to about eps · ω t = 3e-12 rad; the step adds no drift beyond that
+    assert abs(run.x_final[0] - exact) < 20 * np.finfo(float).eps * w * horizon
+    assert 1e6 / PHASOR_BLOCK > 1000
+
+
+def test_energy_is_scipy_simpson_for_odd_and_even_point_counts():
+    d = Sinusoids([1.0, 0.3], [2.0, 11.0], [0.1, 0.0])
+    for horizon in (3.0, 3.001, 0.002, 0.001):       # 3001, 3002, 3 and 2 points
+        run = simulate_stream(SCALAR, d, horizon, 1e-3, trace_every=1e-3, x0=[0.5])
+        t = np.linspace(0.0, horizon, run.trace.t.size)
+        z = run.trace.z_lo[:, 0]
+        assert_allclose(run.energy, simpson(z**2, x=t), rtol=1e-14)
+        assert_allclose(run.input_energy, simpson(d(t) ** 2, x=t), rtol=1e-14)
+
+
+def test_cumulative_grid_running_ratio_and_windows():
+    d = Sinusoids([1.0], [np.pi])           # period 2 s
+    run = simulate_stream(SCALAR, d, 10.0, 1e-3, cumulative_every=0.5, trace_every=1e-3)
+    t = run.trace.t
+    z2 = run.trace.z_lo[:, 0] ** 2
+    for j in (1, 7, 20):
+        k = round(j * 0.5 / 1e-3)
+        assert_allclose(run.energy_cum[j], simpson(z2[:k + 1], x=t[:k + 1]), rtol=1e-13)
+    assert run.energy_cum[0] == 0.0 and run.t_cum[-1] == 10.0
+    assert_allclose(run.energy_cum[-1], run.energy, rtol=1e-14)
+    tr, ratio = run.running_l2()
+    assert np.isnan(ratio[0])
+    assert_allclose(ratio[1:], np.sqrt(run.energy_cum[1:] / run.input_energy_cum[1:]), rtol=1e-15)
+    t0, ez, ed = run.window_energies(2.0)
+    assert t0.size == run.t_cum.size - 4
+    assert_allclose(ez[3], run.energy_cum[7] - run.energy_cum[3])
+    # steady state: over a whole period the ratio is |1/(1 + jπ)|² (transient e^{−8} left)
+    assert_allclose(ez[-1] / ed[-1], 1 / (1 + np.pi**2), rtol=1e-3)
+    with pytest.raises(ValueError, match="multiple of the coarse step"):
+        run.window_energies(0.7)
+    with pytest.raises(ValueError, match="cumulative_every"):
+        simulate_stream(SCALAR, d, 1.0, 1e-3).running_l2()
+
+
+def test_trace_bins_hold_min_max_and_mode_shares():
+    pm = paper_modes()
+    old, new = full_and_stream(pm["modes"], mixed_disturbance(0.2), 6.0, 1e-3, law_bands=pm["bands"],
+                               law_Q=pm["Q"], trace_every=0.25)
+    every = 250
+    for b in (0, 5, new.trace.t.size - 1):
+        sl = slice(b * every, (b + 1) * every)
+        assert_allclose(new.trace.z_lo[b], old.z[sl].min(axis=0), rtol=1e-10, atol=1e-15)
+        assert_allclose(new.trace.z_hi[b], old.z[sl].max(axis=0), rtol=1e-10, atol=1e-15)
+        assert_allclose(new.trace.share[b, 1], np.mean(old.sigma[sl] == 1))
+    assert new.trace.t.size == 25                      # 6001 points: 24 full bins and one of 1
+    assert_allclose(new.trace.share.sum(axis=1), 1.0)
+
+
+def test_zero_and_first_order_hold_are_exact_for_their_signals():
+    dt, N = 0.01, 501
+    t = np.arange(N) * dt
+    # ZOH of a constant 1: x = 1 − e^{−t}; FOH of the ramp t: x = t − 1 + e^{−t}
+    zoh = simulate_stream(SCALAR, Sampled(np.ones(N), dt), 5.0, dt)
+    foh = simulate_stream(SCALAR, Sampled(t, dt, hold="foh"), 5.0, dt)
+    assert abs(zoh.x_final[0] - (1 - np.exp(-5.0))) < 5e-14
+    assert abs(foh.x_final[0] - (5.0 - 1 + np.exp(-5.0))) < 1e-13
+    # a ZOH input is not the ramp: it lags by dt/2, the stated error of the hold
+    zoh_ramp = simulate_stream(SCALAR, Sampled(t, dt), 5.0, dt)
+    assert_allclose(foh.x_final[0] - zoh_ramp.x_final[0], dt / 2, rtol=1e-2)
+
+
+def test_sampled_sinusoid_converges_to_the_exact_sinusoidal_run():
+    d = Sinusoids([1.0], [3.0])
+    exact = simulate_stream(SCALAR, d, 5.0, 1e-3).x_final[0]
+    errors = {}
+    for hold in ("zoh", "foh"):
+        for dt in (1e-2, 5e-3):
+            t = np.arange(round(5.0 / dt) + 1) * dt
+            errors[hold, dt] = abs(simulate_stream(SCALAR, Sampled(d(t), dt, hold=hold), 5.0, dt).x_final[0]
+                                   - exact)
+    assert 1.8 < errors["zoh", 1e-2] / errors["zoh", 5e-3] < 2.2        # O(dt)
+    assert 3.6 < errors["foh", 1e-2] / errors["foh", 5e-3] < 4.4        # O(dt²)
+
+
+def test_batch_pads_cases_of_different_sizes_and_equals_single_runs():
+    rng = np.random.default_rng(4)
+    two = [LTISystem(random_hurwitz(rng, 2), [[1.0], [0.5]], [[1.0, 0.0]], [[0.0]]) for _ in range(2)]
+    three = LTISystem(random_hurwitz(rng, 3), [[1.0], [0.0], [0.2]], np.eye(3)[:2], [[0.1], [0.0]])
+    bands = [Band.lf(1.0), Band.hf(5.0)]
+    Q = [random_spd(rng, 2), random_spd(rng, 2)]
+    cases = [Case(two, mixed_disturbance(0.3), 20.0, 1e-3, law_bands=bands, law_Q=Q, x0=[0.1, 0.0]),
+             Case(three, hf_disturbance(), 10.0, 2e-3, x0=[0.0, 0.1, 0.0]),
+             Case(two[0], Sampled(np.sin(np.arange(5001) * 0.01), 2e-3, hold="foh"), 10.0, 2e-3),
+             Case(two, Sinusoids([1.0], [0.5]), 6.0, 1e-3, law_bands=bands, law_Q=Q, law="candidate")]
+    opts = dict(cumulative_every=2.0, trace_every=0.5)
+    batch = simulate_batch(cases, threads=2, **opts)
+    serial = simulate_batch(cases, threads=1, **opts)
+    for c, case in enumerate(cases):
+        one = simulate_stream(case.modes, case.d, case.horizon, case.dt, x0=case.x0,
+                              law_bands=case.law_bands, law_Q=case.law_Q, law=case.law, **opts)
+        for res in (batch[c], serial[c]):
+            assert res.energy == one.energy and res.switches == one.switches
+            assert np.array_equal(res.x_final, one.x_final)
+            assert np.array_equal(res.energy_cum, one.energy_cum)
+            assert np.array_equal(res.trace.z_hi, one.trace.z_hi)
+            assert res.time_share.size == one.time_share.size
+    assert batch[1].x_final.shape == (3,) and batch[1].trace.z_lo.shape == (21, 2)
+    assert batch.time_share.shape == (4, 2) and batch.time_share[1, 1] == 0.0
+    assert batch[0].switches > 0
+
+
+def test_python_loop_equals_the_compiled_one():
+    pm = paper_modes()
+    kw = dict(law_bands=pm["bands"], law_Q=pm["Q"], x0=[0.01, -0.02], cumulative_every=0.1, trace_every=0.05)
+    a = simulate_stream(pm["modes"], mixed_disturbance(0.1), 0.6, 1e-3, **kw)
+    b = simulate_stream(pm["modes"], mixed_disturbance(0.1), 0.6, 1e-3, kernel="python", **kw)
+    assert a.energy == b.energy and a.switches == b.switches
+    assert np.array_equal(a.x_final, b.x_final) and np.array_equal(a.trace.x_hi, b.trace.x_hi)
+
+
+def test_memory_does_not_grow_with_the_horizon():
+    d = mixed_disturbance(0.1)
+    pm = paper_modes()
+    kw = dict(law_bands=pm["bands"], law_Q=pm["Q"])
+    simulate_stream(pm["modes"], d, 1.0, 1e-3, **kw)        # compile outside the measurement
+    peaks = []
+    for horizon in (10.0, 1000.0):                          # 1e4 and 1e6 steps
+        tracemalloc.start()
+        simulate_stream(pm["modes"], d, horizon, 1e-3, **kw)
+        peaks.append(tracemalloc.get_traced_memory()[1])
+        tracemalloc.stop()
+    # a full trace of 1e6 steps would take > 100 MB; the streamed run's extra is the dwell edges
+    assert peaks[1] - peaks[0] < 4096, peaks
+
+
+def test_divergence_is_an_error_alone_and_a_flag_in_a_batch():
+    unstable = LTISystem([[50.0]], [[1.0]], [[1.0]], [[0.0]])
+    with pytest.raises(UnstableError, match="overflowed"):
+        simulate_stream(unstable, Sinusoids([1.0], [1.0]), 30.0, 1e-3)
+    cases = [Case(unstable, Sinusoids([1.0], [1.0]), 30.0, 1e-3), Case(SCALAR, Sinusoids([1.0], [1.0]), 1.0, 1e-3)]
+    with pytest.warns(UnstableRunWarning, match=r"1 of 2 cases diverged.*\[0\]"):
+        batch = simulate_batch(cases, cumulative_every=1.0)
+    assert batch.diverged.tolist() == [True, False]
+    assert batch.energy[0] == np.inf and np.isfinite(batch.energy[1])
+    assert batch[0].diverged_at is not None and batch[0].t_cum[-1] <= batch[0].diverged_at
+    with pytest.raises(UnstableError):
+        batch[0].l2_ratio()
+    # finite but growing: a warning names the mode
+    slow = LTISystem([[0.01]], [[1.0]], [[1.0]], [[0.0]])
+    with pytest.warns(UnstableRunWarning, match="mode 0 is not Hurwitz"):
+        simulate_stream(slow, Sinusoids([1.0], [1.0]), 1.0, 1e-3)
+
+
+@pytest.mark.parametrize("kwargs, exc, match", [
+    (dict(cumulative_every=0.003), ValueError, "even number of steps"),
+    (dict(cumulative_every=0.0025), ValueError, "multiple of dt"),
+    (dict(trace_every=-1.0), ValueError, "trace_every"),
+    (dict(dwell_edges=[1.0, 0.5]), ValueError, "dwell_edges"),
+    (dict(kernel="fortran"), ValueError, "kernel"),
+    (dict(horizon=1.0005), ValueError, "multiple of dt"),
+    (dict(d=Sampled(np.zeros(10), 1e-3)), ValueError, "has 10 samples but the horizon needs 1001"),
+    (dict(d=Sampled(np.zeros(2001), 5e-4)), ValueError, "must be equal"),
+    (dict(d=Piecewise([0.0, 0.0005, 1.0], [Sinusoids([1.0], [1.0])] * 2)), ValueError, "not on the grid"),
+    (dict(d=np.zeros(1001)), TypeError, "Sampled"),
+    (dict(law="sticky"), ValueError, "law must be one of"),
+    (dict(x0=[1.0, 2.0]), Exception, "x0"),
+])
+def test_bad_inputs_name_the_argument(kwargs, exc, match):
+    args = dict(modes=SCALAR, d=Sinusoids([1.0], [1.0]), horizon=1.0, dt=1e-3)
+    for k in ("modes", "d", "horizon", "dt"):
+        if k in kwargs:
+            args[k] = kwargs.pop(k)
+    with pytest.raises(exc, match=match):
+        simulate_stream(args["modes"], args["d"], args["horizon"], args["dt"], **kwargs)
+
+
+def test_batch_errors_name_the_case():
+    good = Case(SCALAR, Sinusoids([1.0], [1.0]), 1.0, 1e-3)
+    with pytest.raises(ValueError, match=r"cases\[1\]: horizon"):
+        simulate_batch([good, Case(SCALAR, Sinusoids([1.0], [1.0]), 1.0005, 1e-3)])
+    with pytest.raises(TypeError, match=r"cases\[0\]: case"):
+        simulate_batch([(SCALAR, Sinusoids([1.0], [1.0]))])
+    with pytest.raises(ValueError, match="at least one Case"):
+        simulate_batch([])
+    with pytest.raises(ValueError, match="threads"):
+        simulate_batch([good], threads=0)
+    pm = paper_modes()
+    with pytest.raises(ValueError, match=r"cases\[0\]: law_bands and law_Q"):
+        simulate_batch([Case(pm["modes"], Sinusoids([1.0], [1.0]), 1.0, 1e-3)])
+
+
+def test_sampled_signal_values_and_errors():
+    d = Sampled([0.0, 1.0, 3.0], 0.5, hold="foh")
+    assert_allclose(d([-0.1, 0.0, 0.5, 0.6, 1.0, 1.01]), [0.0, 0.0, 1.0, 1.4, 3.0, 0.0])
+    with pytest.raises(ValueError, match="at least 2 samples"):
+        Sampled([1.0], 0.1)
+    with pytest.raises(ValueError, match="hold must be one of"):
+        Sampled([1.0, 2.0], 0.1, hold="cubic")
+    with pytest.raises(ValueError, match="dt"):
+        Sampled([1.0, 2.0], 0.0)
+
+
+def test_single_mode_runs_ignore_the_law_and_warn_nothing():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        run = simulate_stream(SCALAR, hf_disturbance(), 2.0, 1e-3)
+    assert run.switches == 0 and run.time_share.tolist() == [1.0] and run.dwell_counts.sum() == 0
