@@ -1,32 +1,45 @@
-"""Benchmark of the switched-system simulator (not a test: timings depend on the machine).
+"""Benchmark of the simulators (not a test: timings depend on the machine and its load).
 
-Measures in one run, on the paper's FDSC loop (modes PassC-LF / PassC-HF, paper's Q's, mixed
-disturbance d_h + 0.1 d_l, dt = 1 ms):
+Measures in one run, on the paper's FDSC loop (modes PassC-LF / PassC-HF, the paper's Q's, the
+mixed disturbance d_h + 0.1 d_l: six tones, dt = 1 ms), every rate as a ratio against baselines
+measured in the same run:
 
-* the throughput of ``simulate`` with the compiled kernel (switched steps per second, one core,
-  setup included);
-* the same exact-discretization method with the plain Python/NumPy reference kernel
-  (``simulate(..., kernel="numpy")``);
-* scipy.integrate.solve_ivp (DOP853, rtol = 1e-12) integrating the same switched system with the
-  same sampled law, one event interval per sample, and its error against our exact steps;
+* **streaming path** (``fdsc.simulate_stream``, reductions only): end-to-end switched steps per
+  second (preparation included, one core), and the loop's own rate (the same run minus the
+  time of a one-step run, i.e. minus the preparation);
+* **previous exact method** (``fdsc.simulate``, full trajectories, particular solutions computed
+  in NumPy before its compiled loop): steps per second, and the agreement of the two (energy,
+  switch count, final state);
+* **scipy.integrate.solve_ivp** (DOP853, rtol = 1e-12) on the same switched system with the same
+  sampled law, one integration per sample interval: steps per second and its error against the
+  exact steps (equal accuracy: both at the 1e-10 level or better);
+* **batch**: a ρ_p sweep as in paper Fig. 7 (21 values of ρ_p in [0, 0.5]; the four printed
+  gains K_e, K_f1, K_f2, K_f3 and FDSC; 500 s at 1 ms: 105 runs, 5.25e7 steps) in one call of
+  ``fdsc.simulate_batch`` on every core, against the same cases run one by one;
+* **memory**: peak resident memory of a 1e8-step reduction-only run, measured in a fresh
+  process (its baseline after imports and compilation is reported beside it);
 * the relative error of an LTI output energy against its closed form.
 
-Only public functions are used (``fdsc.simulate``, ``fdsc.time_grid``,
-``fdsc.simulate.particular`` and the paper's setup from ``fdsc.paper.data``). The last line
-printed is JSON with at least ``switched_steps_per_s``, ``speedup_vs_solve_ivp`` and
-``lti_energy_rel_err``. Usage: ``python benchmarks/bench_simulate.py``.
+The last line printed is JSON with ``switched_steps_per_s``, ``speedup_vs_solve_ivp``,
+``lti_energy_rel_err``, ``end_to_end_steps_per_s``, ``sweep_seconds`` and ``peak_mb_1e8``.
+Usage: ``python benchmarks/bench_simulate.py [--quick]`` (``--quick`` skips the 1e8-step run).
 """
 
 import json
 import os
+import subprocess
+import sys
 import time
 
+import numba
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from fdsc import LTISystem, Sinusoids, simulate, time_grid
-from fdsc.paper.data import mixed_disturbance, paper_modes
+from fdsc import Case, LTISystem, Sinusoids, simulate, simulate_batch, simulate_stream, time_grid
+from fdsc.paper.data import aircraft, mixed_disturbance, paper_gains, paper_modes
 from fdsc.simulate import particular
+
+DT = 1e-3
 
 
 def best_of(fn, repeat=3):
@@ -52,46 +65,131 @@ def solve_ivp_switched(t, sigma, modes, d):
     return np.array(out)
 
 
+def sweep_cases(horizon=500.0):
+    plant, gains, pm = aircraft(), paper_gains(), paper_modes()
+    cases = []
+    for rho in np.linspace(0.0, 0.5, 21):
+        d = mixed_disturbance(float(rho))
+        for name in ("K_e", "K_f1", "K_f2", "K_f3"):
+            cases.append(Case(plant.closed_loop(gains[name]), d, horizon, DT))
+        cases.append(Case(pm["modes"], d, horizon, DT, law_bands=pm["bands"], law_Q=pm["Q"]))
+    return cases
+
+
+MEMORY_SCRIPT = """
+import resource, sys, time
+from fdsc import simulate_stream
+from fdsc.paper.data import mixed_disturbance, paper_modes
+pm, d = paper_modes(), mixed_disturbance(0.1)
+kw = dict(law_bands=pm["bands"], law_Q=pm["Q"])
+simulate_stream(pm["modes"], d, 1.0, 1e-3, **kw)
+base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+t0 = time.perf_counter()
+run = simulate_stream(pm["modes"], d, float(sys.argv[1]), 1e-3, **kw)
+seconds = time.perf_counter() - t0
+peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+print(base, peak, seconds, run.switches)
+"""
+
+
+def memory_run(steps):
+    out = subprocess.run([sys.executable, "-c", MEMORY_SCRIPT, str(steps * DT)], check=True,
+                         capture_output=True, text=True).stdout.split()
+    base, peak, seconds, switches = (float(v) for v in out)
+    return base, peak, seconds, int(switches)
+
+
 def main():
+    quick = "--quick" in sys.argv
     pm = paper_modes()
     d = mixed_disturbance(0.1)
-    dt = 1e-3
+    law = dict(law_bands=pm["bands"], law_Q=pm["Q"])
 
-    def run(horizon, kernel):
-        return simulate(pm["modes"], d, time_grid(horizon, dt), law_bands=pm["bands"], law_Q=pm["Q"],
-                        kernel=kernel)
+    # streaming path: end to end, and the loop alone (minus the preparation of a one-step run)
+    simulate_stream(pm["modes"], d, 1.0, DT, **law)              # compile (cached on disk)
+    horizon = 5000.0
+    steps = round(horizon / DT)
+    t_stream = best_of(lambda: simulate_stream(pm["modes"], d, horizon, DT, **law))
+    t_setup = best_of(lambda: simulate_stream(pm["modes"], d, DT, DT, **law), repeat=20)
+    end_to_end = steps / t_stream
+    loop_rate = steps / (t_stream - t_setup)
 
-    run(1.0, "numba")  # warm-up: compilation is cached on disk after the first run
-    steps = time_grid(1250.0, dt).size
-    t_numba = best_of(lambda: run(1250.0, "numba"))
-    py_steps = time_grid(20.0, dt).size
-    t_python = best_of(lambda: run(20.0, "numpy"), repeat=1)
-    # solve_ivp on the same switched run (short horizon; the per-step cost is constant)
-    t_ivp_grid = time_grid(2.0, dt)
-    ref = simulate(pm["modes"], d, t_ivp_grid, law_bands=pm["bands"], law_Q=pm["Q"])
+    # previous exact method (full trajectories) on a shorter horizon, and the agreement
+    old_h = 500.0
+    grid = time_grid(old_h, DT)
+    simulate(pm["modes"], d, time_grid(1.0, DT), **law)
+    t_old = best_of(lambda: simulate(pm["modes"], d, grid, **law), repeat=2)
+    old = simulate(pm["modes"], d, grid, **law)
+    new = simulate_stream(pm["modes"], d, old_h, DT, **law)
+    old_rate = (grid.size - 1) / t_old
+
+    # solve_ivp on the same switched run (short horizon; its per-step cost is constant)
+    g2 = time_grid(2.0, DT)
+    ref = simulate(pm["modes"], d, g2, **law)
     t0 = time.perf_counter()
-    x_ivp = solve_ivp_switched(t_ivp_grid, ref.sigma, pm["modes"], d)
-    t_ivp = time.perf_counter() - t0
+    x_ivp = solve_ivp_switched(g2, ref.sigma, pm["modes"], d)
+    ivp_rate = (g2.size - 1) / (time.perf_counter() - t0)
     ivp_err = float(np.max(np.abs(x_ivp - ref.x)) / np.max(np.abs(ref.x)))
-    kernel_rate = steps / t_numba
-    ivp_rate = t_ivp_grid.size / t_ivp
+    short = simulate_stream(pm["modes"], d, 2.0, DT, **law)
+    stream_vs_exact = float(np.max(np.abs(short.x_final - ref.x[-1])) / np.max(np.abs(ref.x)))
+
+    # batch: the ρ_p sweep of paper Fig. 7 (21 × 5 runs of 500 s)
+    cases = sweep_cases()
+    simulate_batch(sweep_cases(1.0))                              # compile the parallel loop
+    t0 = time.perf_counter()
+    batch = simulate_batch(cases)
+    sweep_seconds = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    one_by_one = [simulate_stream(c.modes, c.d, c.horizon, c.dt, law_bands=c.law_bands,
+                                  law_Q=c.law_Q) for c in cases]
+    serial_seconds = time.perf_counter() - t0
+    assert all(a.energy == b.energy for a, b in zip(batch, one_by_one, strict=True))
+    sweep_steps = sum(round(c.horizon / c.dt) for c in cases)
+
+    # memory of a reduction-only run of 1e8 steps (and 1e6 steps for the baseline), fresh processes
+    mem = {}
+    if not quick:
+        for n in (10**6, 10**8):
+            mem[n] = memory_run(n)
+
     # LTI energy against its closed form: one tone in steady state over whole periods
-    sys = LTISystem([[-2.0]], [[1.0]], [[1.0]], [[0.0]])
+    sys_ = LTISystem([[-2.0]], [[1.0]], [[1.0]], [[0.0]])
     w = 1.0
     T = 2 * np.pi * 200
     tone = Sinusoids([1.0], [w])
-    xp, _ = particular(sys.A, sys.B, tone, [0.0])
-    e = simulate(sys, tone, time_grid(T, T / 400_000), x0=xp[0]).energy()
+    xp, _ = particular(sys_.A, sys_.B, tone, [0.0])
+    e = simulate_stream(sys_, tone, T, T / 400_000, x0=xp[0]).energy
     exact = abs(1 / (1j * w + 2)) ** 2 * T / 2
+
     result = {
-        "switched_steps_per_s": kernel_rate,
-        "python_steps_per_s": py_steps / t_python,
-        "speedup_vs_python": kernel_rate / (py_steps / t_python),
+        "switched_steps_per_s": end_to_end,
+        "end_to_end_steps_per_s": end_to_end,
+        "loop_steps_per_s": loop_rate,
+        "end_to_end_share_of_loop": end_to_end / loop_rate,
+        "setup_seconds": t_setup,
+        "previous_method_steps_per_s": old_rate,
+        "speedup_vs_previous_method": end_to_end / old_rate,
+        "energy_rel_diff_vs_previous_method": abs(new.energy - old.energy()) / old.energy(),
+        "switches_previous_method": int(old.switch_times.size),
+        "switches_stream": new.switches,
+        "stream_state_rel_err_vs_exact": stream_vs_exact,
         "solve_ivp_steps_per_s": ivp_rate,
-        "speedup_vs_solve_ivp": kernel_rate / ivp_rate,
+        "speedup_vs_solve_ivp": end_to_end / ivp_rate,
         "solve_ivp_rel_err_vs_exact": ivp_err,
+        "sweep_cases": len(cases),
+        "sweep_steps": sweep_steps,
+        "sweep_seconds": sweep_seconds,
+        "sweep_serial_seconds": serial_seconds,
+        "sweep_parallel_speedup": serial_seconds / sweep_seconds,
+        "sweep_cases_per_s": len(cases) / sweep_seconds,
+        "sweep_steps_per_s": sweep_steps / sweep_seconds,
+        "threads": numba.get_num_threads(),
+        "peak_mb_1e8": mem[10**8][1] if mem else None,
+        "baseline_mb_after_imports": mem[10**8][0] if mem else None,
+        "peak_mb_1e6": mem[10**6][1] if mem else None,
+        "seconds_1e8": mem[10**8][2] if mem else None,
         "lti_energy_rel_err": abs(e - exact) / exact,
-        "horizon_s": 1250.0, "dt_s": dt, "steps": steps, "cpu_count": os.cpu_count(),
+        "horizon_s": horizon, "dt_s": DT, "steps": steps, "cpu_count": os.cpu_count(),
     }
     for k, v in result.items():
         print(f"{k:36s} {v:.4g}" if isinstance(v, float) else f"{k:36s} {v}")

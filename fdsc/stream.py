@@ -71,7 +71,7 @@ _LAW_CODE = {"previous": 0, "candidate": 1}
 # the compiled loop
 # ---------------------------------------------------------------------------------------------
 
-def _case_loop(N, dt, nm, Phi, A, B, C, D, W, law, sigma0, x0,
+def _case_loop(N, dt, nm, Phi, A, B, C, D, W, Wt, law, sigma0, x0,
                kind, seg_start, seg_nt, omega, amp, phase, Xre, Xim, Rre, Rim,
                u, G0, G1, cum_every, trace_every, dwell_edges,
                sums, share_steps, dwell_counts, cum, tr_lo, tr_hi, tr_share, x_out, info):
@@ -82,7 +82,11 @@ def _case_loop(N, dt, nm, Phi, A, B, C, D, W, law, sigma0, x0,
     n = x0.shape[0]
     p = C.shape[1]
     T = omega.shape[1]
-    K = Rre.shape[2]
+    K = Rre.shape[1]
+    nt2 = Wt.shape[0]
+    prod = np.empty(nt2)
+    sa = np.empty(Wt.shape[1])
+    sb = np.empty(Wt.shape[1])
     x = x0.copy()
     xn = np.empty(n)
     v = np.empty(2 * n)
@@ -92,11 +96,11 @@ def _case_loop(N, dt, nm, Phi, A, B, C, D, W, law, sigma0, x0,
     bim = np.empty(T)
     pre = np.empty(T)       # phasor at the current point
     pim = np.empty(T)
-    qre = np.empty(T)       # phasor at the next point
-    qim = np.empty(T)
     left_mode = -1
     s = 0
     kb = 0
+    have_next = False
+    dnext = 0.0
     if kind == 0:
         for j in range(seg_nt[0]):
             th = omega[0, j] * (0.0 * dt) + phase[0, j]
@@ -131,6 +135,7 @@ def _case_loop(N, dt, nm, Phi, A, B, C, D, W, law, sigma0, x0,
             s += 1
             kb = k
             left_mode = -1
+            have_next = False
             for j in range(seg_nt[s]):
                 th = omega[s, j] * (k * dt) + phase[s, j]
                 bre[j] = math.cos(th)
@@ -138,33 +143,66 @@ def _case_loop(N, dt, nm, Phi, A, B, C, D, W, law, sigma0, x0,
                 pre[j] = bre[j]
                 pim[j] = bim[j]
         if kind == 0:
-            dk = 0.0
-            for j in range(seg_nt[s]):
-                dk += amp[s, j] * pim[j]
+            if have_next:
+                dk = dnext           # computed with the phasors by the previous step
+            else:
+                dk = 0.0
+                for j in range(seg_nt[s]):
+                    dk += amp[s, j] * pim[j]
+            have_next = False
         else:
             dk = u[k]
         # the switching law at point k
         if nm > 1:
             best = -np.inf
             choice = prev
-            for i in range(nm):
-                if law == 1 or i == 0:
-                    mm = i if law == 1 else prev
+            if law == 0:
+                # the measured ẋ is the same for every candidate: score_i = Σ_{r≤c} Wt_i,rc v_r v_c
+                for r in range(n):
+                    acc = B[r] * dk
+                    for c in range(n):
+                        acc += A[prev, r, c] * x[c]
+                    v[r] = acc
+                    v[n + r] = x[r]
+                idx = 0
+                for r in range(2 * n):
+                    for c in range(r, 2 * n):
+                        prod[idx] = v[r] * v[c]
+                        idx += 1
+                for i in range(nm):
+                    sa[i] = 0.0
+                    sb[i] = 0.0
+                for q_ in range(0, nt2 - 1, 2):
+                    pa = prod[q_]
+                    pb = prod[q_ + 1]
+                    for i in range(nm):
+                        sa[i] += Wt[q_, i] * pa
+                        sb[i] += Wt[q_ + 1, i] * pb
+                if nt2 % 2 == 1:
+                    for i in range(nm):
+                        sa[i] += Wt[nt2 - 1, i] * prod[nt2 - 1]
+                for i in range(nm):
+                    score = sa[i] + sb[i]
+                    if score > best:
+                        best = score
+                        choice = i
+            else:
+                for i in range(nm):
                     for r in range(n):
                         acc = B[r] * dk
                         for c in range(n):
-                            acc += A[mm, r, c] * x[c]
+                            acc += A[i, r, c] * x[c]
                         v[r] = acc
                         v[n + r] = x[r]
-                score = 0.0
-                for r in range(2 * n):
-                    row = 0.0
-                    for c in range(2 * n):
-                        row += W[i, r, c] * v[c]
-                    score += v[r] * row
-                if score > best:
-                    best = score
-                    choice = i
+                    score = 0.0
+                    for r in range(2 * n):
+                        row = 0.0
+                        for c in range(2 * n):
+                            row += W[i, r, c] * v[c]
+                        score += v[r] * row
+                    if score > best:
+                        best = score
+                        choice = i
             if choice != prev:
                 if k > 0:
                     switches += 1
@@ -261,26 +299,32 @@ def _case_loop(N, dt, nm, Phi, A, B, C, D, W, law, sigma0, x0,
                     for r in range(n):
                         acc = 0.0
                         for j in range(nt):
-                            acc += Xre[s, m, j, r] * pim[j] + Xim[s, m, j, r] * pre[j]
+                            acc += Xre[s, m, r, j] * pim[j] + Xim[s, m, r, j] * pre[j]
                         left[r] = acc
+                # phasors at t_{k+1}: the block's first phasor times a rotation from the table
                 jj = k + 1 - kb
-                if jj < K:
-                    for j in range(nt):
-                        qre[j] = bre[j] * Rre[s, j, jj] - bim[j] * Rim[s, j, jj]
-                        qim[j] = bre[j] * Rim[s, j, jj] + bim[j] * Rre[s, j, jj]
-                else:
+                if jj >= K:
                     kb = k + 1
+                    jj = 0
                     for j in range(nt):
                         th = omega[s, j] * ((k + 1) * dt) + phase[s, j]
                         bre[j] = math.cos(th)
                         bim[j] = math.sin(th)
-                        qre[j] = bre[j]
-                        qim[j] = bim[j]
+                # one pass over the tones: phasor, d(t_{k+1}) and x_p(t_{k+1}) of mode m
                 for r in range(n):
-                    acc = 0.0
-                    for j in range(nt):
-                        acc += Xre[s, m, j, r] * qim[j] + Xim[s, m, j, r] * qre[j]
-                    right[r] = acc
+                    right[r] = 0.0
+                dnext = 0.0
+                for j in range(nt):
+                    rr = Rre[s, jj, j]
+                    ri = Rim[s, jj, j]
+                    qr = bre[j] * rr - bim[j] * ri
+                    qi = bre[j] * ri + bim[j] * rr
+                    pre[j] = qr
+                    pim[j] = qi
+                    dnext += amp[s, j] * qi
+                    for r in range(n):
+                        right[r] += Xre[s, m, r, j] * qi + Xim[s, m, r, j] * qr
+                have_next = True
                 for r in range(n):
                     acc = right[r]
                     for c in range(n):
@@ -288,9 +332,6 @@ def _case_loop(N, dt, nm, Phi, A, B, C, D, W, law, sigma0, x0,
                     xn[r] = acc
                 for r in range(n):
                     left[r] = right[r]
-                for j in range(nt):
-                    pre[j] = qre[j]
-                    pim[j] = qim[j]
                 left_mode = m
         else:
             for r in range(n):
@@ -329,12 +370,12 @@ _case_numba = njit(cache=True)(_case_loop)
 
 
 @njit(parallel=True, cache=True)
-def _batch_numba(N, dt, nm, Phi, A, B, C, D, W, law, sigma0, x0,
+def _batch_numba(N, dt, nm, Phi, A, B, C, D, W, Wt, law, sigma0, x0,
                  kind, seg_start, seg_nt, omega, amp, phase, Xre, Xim, Rre, Rim,
                  u_all, u_off, G0, G1, cum_every, trace_every, dwell_edges, cum_off, tr_off,
                  sums, share_steps, dwell_counts, cum, tr_lo, tr_hi, tr_share, x_out, info):
     for c in prange(N.shape[0]):
-        _case_numba(N[c], dt[c], nm[c], Phi[c], A[c], B[c], C[c], D[c], W[c], law[c], sigma0[c],
+        _case_numba(N[c], dt[c], nm[c], Phi[c], A[c], B[c], C[c], D[c], W[c], Wt[c], law[c], sigma0[c],
                     x0[c], kind[c], seg_start[c], seg_nt[c], omega[c], amp[c], phase[c], Xre[c],
                     Xim[c], Rre[c], Rim[c], u_all[u_off[c]:u_off[c + 1]], G0[c], G1[c],
                     cum_every[c], trace_every[c], dwell_edges[c],
@@ -760,13 +801,14 @@ def _stack(preps):
               nm=np.array([q["nm"] for q in preps], dtype=np.int64),
               Phi=np.zeros((C, nm, n, n)), A=np.zeros((C, nm, n, n)), B=np.zeros((C, n)),
               C=np.zeros((C, nm, p, n)), D=np.zeros((C, p)), W=np.zeros((C, nm, 2 * n, 2 * n)),
+              Wt=np.zeros((C, n * (2 * n + 1), nm)),
               law=np.array([q["law"] for q in preps], dtype=np.int64),
               sigma0=np.array([q["sigma0"] for q in preps], dtype=np.int64),
               x0=np.zeros((C, n)), kind=np.array([q["kind"] for q in preps], dtype=np.int64),
               seg_start=np.zeros((C, S + 1), dtype=np.int64), seg_nt=np.zeros((C, S), dtype=np.int64),
               omega=np.zeros((C, S, T)), amp=np.zeros((C, S, T)), phase=np.zeros((C, S, T)),
-              Xre=np.zeros((C, S, nm, T, n)), Xim=np.zeros((C, S, nm, T, n)),
-              Rre=np.zeros((C, S, T, K)), Rim=np.zeros((C, S, T, K)),
+              Xre=np.zeros((C, S, nm, n, T)), Xim=np.zeros((C, S, nm, n, T)),
+              Rre=np.zeros((C, S, K, T)), Rim=np.zeros((C, S, K, T)),
               G0=np.zeros((C, nm, n)), G1=np.zeros((C, nm, n)),
               cum_every=np.array([q["cum_every"] for q in preps], dtype=np.int64),
               trace_every=np.array([q["trace_every"] for q in preps], dtype=np.int64),
@@ -789,6 +831,9 @@ def _stack(preps):
             st["W"][c, i, :qn, n:n + qn] = W[i, :qn, qn:]
             st["W"][c, i, n:n + qn, :qn] = W[i, qn:, :qn]
             st["W"][c, i, n:n + qn, n:n + qn] = W[i, qn:, qn:]
+        for i in range(W.shape[0]):
+            Wp = st["W"][c, i]
+            st["Wt"][c, :, i] = (Wp + Wp.T - np.diag(np.diag(Wp)))[np.triu_indices(2 * n)]
         st["x0"][c, :qn] = q["x0"]
         st["G0"][c, :qm, :qn] = q["G0"]
         st["G1"][c, :qm, :qn] = q["G1"]
@@ -800,7 +845,9 @@ def _stack(preps):
             s_ = nt.size
             st["seg_nt"][c, :s_] = nt
             st["omega"][c, :s_], st["amp"][c, :s_], st["phase"][c, :s_] = om, am, ph
-            st["Xre"][c, :s_, :qm, :, :qn], st["Xim"][c, :s_, :qm, :, :qn] = X.real, X.imag
+            X = X.transpose(0, 1, 3, 2)       # the tone index innermost: contiguous loops
+            st["Xre"][c, :s_, :qm, :qn], st["Xim"][c, :s_, :qm, :qn] = X.real, X.imag
+            R = R.transpose(0, 2, 1)
             st["Rre"][c, :s_], st["Rim"][c, :s_] = R.real, R.imag
         st["dwell_edges"][c, :q["dwell_edges"].size] = q["dwell_edges"]
         u_off.append(u_off[-1] + q["u"].size)
@@ -812,7 +859,7 @@ def _stack(preps):
     return st, dict(n=n, p=p, nm=nm, nb=nb)
 
 
-_INPUTS = ("N", "dt", "nm", "Phi", "A", "B", "C", "D", "W", "law", "sigma0", "x0", "kind",
+_INPUTS = ("N", "dt", "nm", "Phi", "A", "B", "C", "D", "W", "Wt", "law", "sigma0", "x0", "kind",
            "seg_start", "seg_nt", "omega", "amp", "phase", "Xre", "Xim", "Rre", "Rim")
 
 
