@@ -18,6 +18,7 @@ from .bands import Band
 from .plant import LTISystem, Plant, as_plant
 from .signals import Piecewise, Sinusoids
 from .simulate import SimResult, simulate
+from .stream import Case
 from .switching import DEFAULT_GAMMA_TOL, Theorem1Result, certify_q, design_q
 from .synthesis import synthesize, synthesize_hinf
 
@@ -309,3 +310,39 @@ class FDSC:
         return simulate(list(self.modes), d, t, x0=x0, law_bands=list(self.bands),
                         law_Q=list(self.Q), law=law, sigma0=sigma0, kernel=kernel, **options)
 
+    def case(self, d, horizon: float, dt: float, *, x0: ArrayLike | None = None,
+             law: str = "previous", sigma0: int = 0, label: object = None) -> Case:
+        """The switched closed loop under this design's law as one :class:`~fdsc.stream.Case`
+        of a batch (:func:`~fdsc.stream.simulate_batch`) or a streamed run.
+
+        Parameters
+        ----------
+        d : Sinusoids, Piecewise or Sampled
+            The scalar disturbance.
+        horizon, dt : float
+            End time and step in s (the horizon a multiple of dt).
+        x0 : (n,) array_like, optional
+            Initial state (default 0).
+        law : {"previous", "candidate"}, optional
+            How ẋ enters the law (see :data:`fdsc.simulate.LAWS`).
+        sigma0 : int, optional
+            Mode active before t = 0.
+        label : object, optional
+            Kept with the case for the caller.
+
+        Returns
+        -------
+        Case
+            Checked when the batch runs (errors name the case there).
+
+        Examples
+        --------
+        >>> from fdsc import Band, Plant, Sinusoids, simulate_batch
+        >>> plant = Plant([[-1.0]], [[1.0]], [[1.0]], [[1.0], [0.0]], [[0.0], [0.0]], [[0.0], [0.1]])
+        >>> ctrl = FDSC.from_gains(plant, [[[-0.5]], [[-2.0]]], [Band.lf(1.0), Band.hf(5.0)], in_band=1)
+        >>> runs = simulate_batch([ctrl.case(Sinusoids([1.0], [w]), 20.0, 1e-3) for w in (0.3, 30.0)])
+        >>> np.round(runs.time_share[:, 1], 2)          # share of the HF mode: slow tone, fast tone
+        array([0.04, 0.89])
+        """
+        return Case(list(self.modes), d, horizon, dt, x0=x0, law_bands=list(self.bands),
+                    law_Q=list(self.Q), law=law, sigma0=sigma0, label=label)
