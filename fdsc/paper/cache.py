@@ -1,9 +1,11 @@
 """A disk cache for the chapters' results, so that a book build computes each result once.
 
-The book build sets ``FDSC_CACHE_DIR`` to a folder inside its output (``book/_ext/offline.py``),
-and the kernels that execute the chapters inherit it: the introduction's status table, built
-from the record, and the chapters then share one computation of every result. Without the
-variable (tests, the command line, a user's session) nothing is cached.
+The book build sets ``FDSC_CACHE_DIR`` to a fresh folder inside its output
+(``book/_ext/result_cache.py``), and a test session to a fresh temporary folder while nbmake
+starts the kernels of the chapters (``conftest.py``); the kernels inherit it: the
+introduction's status table, built from the record, and the chapters then share one computation
+of every result.
+Without the variable (unit tests, the command line, a user's session) nothing is cached.
 
 A cached value is keyed by the function, its arguments (plain values only: numbers, strings,
 booleans, None and tuples of them; anything else bypasses the cache) and a fingerprint of the
