@@ -743,6 +743,9 @@ def _prepare(case, where, cumulative_every, trace_every, dwell_edges):
         if e.size < 2 or np.any(np.diff(e) <= 0) or e[0] < 0:
             raise ValueError("dwell_edges must be at least 2 increasing times ≥ 0 (s)")
         edges = np.round(e / dt).astype(np.int64)
+        if np.any(np.diff(edges) <= 0):
+            raise ValueError(f"{where}dwell_edges must be at least one step (dt = {dt:g} s) apart, "
+                             f"found {e.tolist()}")
     out["dwell_edges"] = edges
     return out
 
@@ -981,7 +984,8 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
         Bin width (s, a multiple of dt) of decimated min/max traces of x, z and d and of the
         mode share per bin.
     dwell_edges : (B + 1,) array_like, optional
-        Edges (s) of the dwell-time histogram (default 1, 2, 4, … steps).
+        Edges (s) of the dwell-time histogram, at least one step apart (default 1, 2, 4, …
+        steps, up to beyond the horizon); dwells longer than the last edge are not counted.
     kernel : {"numba", "python"}, optional
         The compiled loop or the same loop in the interpreter (slow; for tests).
 
@@ -1039,7 +1043,8 @@ def simulate_batch(cases, *, cumulative_every: float | None = None, trace_every:
     cumulative_every, trace_every, dwell_edges : optional
         As in :func:`simulate_stream`, the same for every case (each must fit every case's dt).
     threads : int, optional
-        Threads to use (default ``numba.get_num_threads()``, i.e. every core).
+        Threads to use (default ``numba.get_num_threads()``, i.e. every core; at most
+        ``numba.config.NUMBA_NUM_THREADS``).
     kernel : {"numba", "python"}, optional
         The compiled loop (parallel) or the same loop in the interpreter (sequential).
 

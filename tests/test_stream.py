@@ -234,6 +234,7 @@ def test_divergence_is_an_error_alone_and_a_flag_in_a_batch():
     (dict(cumulative_every=0.0025), ValueError, "multiple of dt"),
     (dict(trace_every=-1.0), ValueError, "trace_every"),
     (dict(dwell_edges=[1.0, 0.5]), ValueError, "dwell_edges"),
+    (dict(dwell_edges=[1e-4, 2e-4, 1.0]), ValueError, "at least one step"),
     (dict(kernel="fortran"), ValueError, "kernel"),
     (dict(horizon=1.0005), ValueError, "multiple of dt"),
     (dict(d=Sampled(np.zeros(10), 1e-3)), ValueError, "has 10 samples but the horizon needs 1001"),
