@@ -467,12 +467,16 @@ class StreamResult:
     horizon, dt : float
         The grid ``0, dt, …, horizon`` (s).
     energy, input_energy : float
-        ``∫ zᵀz`` and ``∫ d²`` over the horizon (Simpson, as :meth:`SimResult.energy
-        <fdsc.simulate.SimResult.energy>`); ``inf`` and ``nan`` if the run diverged.
+        ``∫ zᵀz`` and ``∫ d²`` over the horizon by Simpson's rule on the samples, as
+        :meth:`SimResult.energy <fdsc.simulate.SimResult.energy>`; ``inf`` and ``nan`` if the run
+        diverged. Under a :class:`~fdsc.signals.Sampled` input this is a quadrature of the
+        samples, not the exact integral of the held signal (which jumps, for ZOH, at every
+        sample): for a sampled smooth signal the two differ by O(dt).
     switches : int
         Number of changes of the active mode.
     time_share : (I,) ndarray
-        Fraction of the horizon spent in each mode.
+        Fraction of the horizon spent in each mode (of the nominal horizon: if the run diverged,
+        the shares sum to less than 1).
     dwell_edges : (B + 1,) ndarray
         Edges (s) of the dwell-time histogram; a dwell of L steps counts in bin b if
         ``edges[b] ≤ L dt < edges[b + 1]``.
@@ -636,15 +640,15 @@ class BatchResult:
 # preparation of one case
 # ---------------------------------------------------------------------------------------------
 
-def _steps_of(name, seconds, dt, *, even=False):
+def _steps_of(name, seconds, dt, where, *, even=False):
     """A duration in s as a whole number of steps of ``dt`` (≥ 1, even if asked)."""
     seconds = as_positive(name, seconds)
     k = round(seconds / dt)
     if k < 1 or abs(k * dt - seconds) > 1e-9 * seconds:
-        raise ValueError(f"{name} ({seconds:g} s) must be a multiple of dt ({dt:g} s)")
+        raise ValueError(f"{where}{name} ({seconds:g} s) must be a multiple of dt ({dt:g} s)")
     if even and k % 2:
-        raise ValueError(f"{name} ({seconds:g} s) must be an even number of steps of dt = {dt:g} s "
-                         f"(the running integrals use Simpson's rule); found {k} steps")
+        raise ValueError(f"{where}{name} ({seconds:g} s) must be an even number of steps of dt = "
+                         f"{dt:g} s (the running integrals use Simpson's rule); found {k} steps")
     return k
 
 
@@ -690,12 +694,20 @@ def _prepare(case, where, cumulative_every, trace_every, dwell_edges):
     nm, p = len(modes), modes[0].n_outputs
     law = as_choice(f"{where}law", case.law, LAWS)
     if nm > 1:
-        if case.law_bands is None or case.law_Q is None or len(case.law_bands) != nm \
-                or len(case.law_Q) != nm:
-            raise ValueError(f"{where}law_bands and law_Q must each list one entry per mode ({nm} modes)")
+        for name in ("law_bands", "law_Q"):
+            value = getattr(case, name)
+            if not isinstance(value, list | tuple) or len(value) != nm:
+                raise ValueError(f"{where}{name} must be a list with one entry per mode ({nm} modes), "
+                                 f"found {type(value).__name__}")
         if not all(isinstance(b, Band) for b in case.law_bands):
             raise TypeError(f"{where}law_bands must be a list of fdsc.Band")
-        W = _law_matrices([b.psi.real for b in case.law_bands], [check_weight(Q, n) for Q in case.law_Q])
+        Qs = []
+        for i, Q in enumerate(case.law_Q):
+            try:
+                Qs.append(check_weight(Q, n))
+            except (ValueError, TypeError) as exc:
+                raise type(exc)(f"{where}law_Q[{i}]: {exc}") from None
+        W = _law_matrices([b.psi.real for b in case.law_bands], Qs)
     else:
         W = np.zeros((1, 2 * n, 2 * n))
     sigma0 = as_count(f"{where}sigma0", case.sigma0, 0)
@@ -734,15 +746,20 @@ def _prepare(case, where, cumulative_every, trace_every, dwell_edges):
                     check_no_pole_at(a, part.frequencies,
                                      what=f"{where}the forced response of mode {i} to the disturbance")
     out["cum_every"] = 0 if cumulative_every is None else _steps_of(
-        "cumulative_every", cumulative_every, dt, even=True)
-    out["trace_every"] = 0 if trace_every is None else _steps_of("trace_every", trace_every, dt)
+        "cumulative_every", cumulative_every, dt, where, even=True)
+    if out["cum_every"] > steps:
+        raise ValueError(f"{where}cumulative_every ({cumulative_every:g} s) exceeds the horizon "
+                         f"({horizon:g} s): the coarse grid would hold one point")
+    out["trace_every"] = 0 if trace_every is None else _steps_of("trace_every", trace_every, dt, where)
     if dwell_edges is None:
         edges = 2 ** np.arange(0, max(2, math.ceil(math.log2(N)) + 2), dtype=np.int64)
     else:
-        e = as_vector("dwell_edges", dwell_edges)
-        if e.size < 2 or np.any(np.diff(e) <= 0) or e[0] < 0:
-            raise ValueError("dwell_edges must be at least 2 increasing times ≥ 0 (s)")
-        edges = np.round(e / dt).astype(np.int64)
+        e = np.asarray(dwell_edges, dtype=float)
+        if e.ndim != 1 or e.size < 2 or np.any(np.isnan(e)) or np.any(np.diff(e) <= 0) or e[0] < 0:
+            raise ValueError(f"{where}dwell_edges must be at least 2 increasing times ≥ 0 (s; the "
+                             f"last may be inf), found {dwell_edges!r}")
+        # edges beyond the horizon (inf included) all mean "longer than any dwell of this run"
+        edges = np.round(np.minimum(e, horizon + (np.arange(e.size) + 1) * dt) / dt).astype(np.int64)
         if np.any(np.diff(edges) <= 0):
             raise ValueError(f"{where}dwell_edges must be at least one step (dt = {dt:g} s) apart, "
                              f"found {e.tolist()}")
@@ -924,7 +941,8 @@ def _result(pr, c, st, sums, share_steps, dwell_counts, cum, tr_lo, tr_hi, tr_sh
                       lo[:, cols_z].copy(), hi[:, cols_z].copy(), lo[:, dcol].copy(),
                       hi[:, dcol].copy(), sh / counts[:, None])
     if diverged >= 0:
-        keep = t_cum <= diverged * dt
+        # rows at and after the point where the state overflowed were never written
+        keep = np.arange(t_cum.size) * ce < diverged
         t_cum, e_cum, d_cum = t_cum[keep], e_cum[keep], d_cum[keep]
     edges = st["dwell_edges"][c, :pr["dwell_edges"].size].astype(float) * dt
     return StreamResult(
@@ -1074,6 +1092,8 @@ def simulate_batch(cases, *, cumulative_every: float | None = None, trace_every:
     array([0.801, 0.201])
     """
     as_choice("kernel", kernel, STREAM_KERNELS)
+    if isinstance(cases, Case) or not hasattr(cases, "__iter__"):
+        raise TypeError(f"cases must be a sequence of Case, found {type(cases).__name__}")
     cases = list(cases)
     if not cases:
         raise ValueError("cases must hold at least one Case")

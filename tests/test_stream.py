@@ -220,7 +220,9 @@ def test_divergence_is_an_error_alone_and_a_flag_in_a_batch():
         batch = simulate_batch(cases, cumulative_every=1.0)
     assert batch.diverged.tolist() == [True, False]
     assert batch.energy[0] == np.inf and np.isfinite(batch.energy[1])
-    assert batch[0].diverged_at is not None and batch[0].t_cum[-1] <= batch[0].diverged_at
+    assert batch[0].diverged_at is not None and batch[0].t_cum[-1] < batch[0].diverged_at
+    # every kept point of the running integral was written (none is a stale zero)
+    assert np.all(np.diff(batch[0].energy_cum) > 0)
     with pytest.raises(UnstableError):
         batch[0].l2_ratio()
     # finite but growing: a warning names the mode
@@ -235,6 +237,11 @@ def test_divergence_is_an_error_alone_and_a_flag_in_a_batch():
     (dict(trace_every=-1.0), ValueError, "trace_every"),
     (dict(dwell_edges=[1.0, 0.5]), ValueError, "dwell_edges"),
     (dict(dwell_edges=[1e-4, 2e-4, 1.0]), ValueError, "at least one step"),
+    (dict(cumulative_every=4.0), ValueError, "exceeds the horizon"),
+    (dict(modes=[SCALAR, SCALAR], law_bands=Band.lf(1.0), law_Q=[[[1.0]]] * 2), ValueError,
+     "law_bands must be a list with one entry per mode"),
+    (dict(modes=[SCALAR, SCALAR], law_bands=[Band.lf(1.0), Band.hf(2.0)], law_Q=[[[1.0]], [[-1.0]]]),
+     ValueError, r"law_Q\[1\]"),
     (dict(kernel="fortran"), ValueError, "kernel"),
     (dict(horizon=1.0005), ValueError, "multiple of dt"),
     (dict(d=Sampled(np.zeros(10), 1e-3)), ValueError, "has 10 samples but the horizon needs 1001"),
@@ -261,10 +268,14 @@ def test_batch_errors_name_the_case():
         simulate_batch([(SCALAR, Sinusoids([1.0], [1.0]))])
     with pytest.raises(ValueError, match="at least one Case"):
         simulate_batch([])
+    with pytest.raises(TypeError, match="sequence of Case"):
+        simulate_batch(good)
+    with pytest.raises(ValueError, match=r"cases\[1\]: cumulative_every"):
+        simulate_batch([good, Case(SCALAR, Sinusoids([1.0], [1.0]), 0.999, 3e-3)], cumulative_every=0.002)
     with pytest.raises(ValueError, match="threads"):
         simulate_batch([good], threads=0)
     pm = paper_modes()
-    with pytest.raises(ValueError, match=r"cases\[0\]: law_bands and law_Q"):
+    with pytest.raises(ValueError, match=r"cases\[0\]: law_bands must be a list"):
         simulate_batch([Case(pm["modes"], Sinusoids([1.0], [1.0]), 1.0, 1e-3)])
 
 
@@ -277,6 +288,15 @@ def test_sampled_signal_values_and_errors():
         Sampled([1.0, 2.0], 0.1, hold="cubic")
     with pytest.raises(ValueError, match="dt"):
         Sampled([1.0, 2.0], 0.0)
+
+
+def test_dwell_edges_beyond_the_horizon_catch_every_long_dwell():
+    pm = paper_modes()
+    kw = dict(law_bands=pm["bands"], law_Q=pm["Q"])
+    a = simulate_stream(pm["modes"], mixed_disturbance(0.1), 5.0, 1e-3, dwell_edges=[1e-3, 5e-3, np.inf], **kw)
+    b = simulate_stream(pm["modes"], mixed_disturbance(0.1), 5.0, 1e-3, dwell_edges=[1e-3, 5e-3, 1e17], **kw)
+    assert a.dwell_counts.sum() == a.switches > 0
+    assert a.dwell_counts.tolist() == b.dwell_counts.tolist()
 
 
 def test_single_mode_runs_ignore_the_law_and_warn_nothing():
