@@ -429,6 +429,20 @@ def _as_modes(modes):
     return [as_system(m, f"modes[{k}]") for k, m in enumerate(modes)]
 
 
+def _shared_input(modes, where=""):
+    """n, B, D of modes that share B, D and their dimensions, with a scalar disturbance."""
+    n = modes[0].n_states
+    B, D = modes[0].B, modes[0].D
+    for k, m in enumerate(modes[1:], start=1):
+        if m.A.shape != (n, n) or not np.array_equal(m.B, B) or m.C.shape != modes[0].C.shape \
+                or not np.array_equal(m.D, D):
+            raise ValueError(f"{where}modes must share B, D and the state and output dimensions; "
+                             f"mode {k} differs from mode 0")
+    if B.shape[1] != 1:
+        raise ValueError(f"{where}the disturbance must be scalar (B of shape (n, 1)), found {B.shape}")
+    return n, B, D
+
+
 def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
              x0: ArrayLike | None = None, law_bands: list | None = None, law_Q: list | None = None,
              law: str = "previous", sigma0: int = 0, kernel: str = "numba",
@@ -500,15 +514,7 @@ def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
     ((1001, 1), True)
     """
     modes = _as_modes(modes)
-    n = modes[0].n_states
-    B, D = modes[0].B, modes[0].D
-    for k, m in enumerate(modes[1:], start=1):
-        if m.A.shape != (n, n) or not np.array_equal(m.B, B) or m.C.shape != modes[0].C.shape \
-                or not np.array_equal(m.D, D):
-            raise ValueError(f"modes must share B, D and the state and output dimensions; mode {k} "
-                             "differs from mode 0")
-    if B.shape[1] != 1:
-        raise ValueError(f"the disturbance must be scalar (B of shape (n, 1)), found {B.shape}")
+    n, B, D = _shared_input(modes)
     check_type("d", d, Sinusoids | Piecewise, "an fdsc.signals.Sinusoids or Piecewise")
     as_choice("law", law, LAWS)
     as_choice("kernel", kernel, KERNELS)

@@ -51,7 +51,7 @@ from .energy import check_weight
 from .exceptions import UnstableError, UnstableRunWarning
 from .frequency import check_no_pole_at
 from .signals import Piecewise, Sampled, Sinusoids
-from .simulate import LAWS, _as_modes, _law_matrices
+from .simulate import LAWS, _as_modes, _law_matrices, _shared_input
 
 __all__ = ["Case", "Trace", "StreamResult", "BatchResult", "simulate_stream", "simulate_batch",
            "PHASOR_BLOCK", "STREAM_KERNELS"]
@@ -77,7 +77,8 @@ def _case_loop(N, dt, nm, Phi, A, B, C, D, W, Wt, law, sigma0, x0,
                sums, share_steps, dwell_counts, cum, tr_lo, tr_hi, tr_share, x_out, info):
     """One run; see the module docstring. Writes every result into the output arguments.
 
-    ``sums`` = [∫zᵀz, ∫d², switches]; ``info`` = [diverged point or −1, final mode]. Points are k = 0 … N−1; step k goes from point k to point k+1 and uses
+    ``sums`` = [∫zᵀz, ∫d², switches]; ``info`` = [diverged point or −1, final mode]. Points
+    are k = 0 … N−1; step k goes from point k to point k+1 and uses
     the mode chosen at point k and the disturbance segment that contains point k."""
     n = x0.shape[0]
     p = C.shape[1]
@@ -652,19 +653,6 @@ def _steps_of(name, seconds, dt, where, *, even=False):
     return k
 
 
-def _mode_arrays(modes, where):
-    n = modes[0].n_states
-    B, D = modes[0].B, modes[0].D
-    for k, m in enumerate(modes[1:], start=1):
-        if m.A.shape != (n, n) or not np.array_equal(m.B, B) or m.C.shape != modes[0].C.shape \
-                or not np.array_equal(m.D, D):
-            raise ValueError(f"{where}modes must share B, D and the state and output dimensions; "
-                             f"mode {k} differs from mode 0")
-    if B.shape[1] != 1:
-        raise ValueError(f"{where}the disturbance must be scalar (B of shape (n, 1)), found {B.shape}")
-    return n, B[:, 0].copy(), D[:, 0].copy()
-
-
 def _segments(d, N, dt, where):
     """Point segments [start_s, start_{s+1}) and their Sinusoids (None: d = 0 there)."""
     if isinstance(d, Sinusoids):
@@ -690,7 +678,8 @@ def _segments(d, N, dt, where):
 def _prepare(case, where, cumulative_every, trace_every, dwell_edges):
     check_type(f"{where}case", case, Case)
     modes = _as_modes(case.modes)
-    n, B, D = _mode_arrays(modes, where)
+    n, B, D = _shared_input(modes, where)
+    B, D = B[:, 0].copy(), D[:, 0].copy()
     nm, p = len(modes), modes[0].n_outputs
     law = as_choice(f"{where}law", case.law, LAWS)
     if nm > 1:
@@ -910,7 +899,8 @@ def _run(preps, kernel, threads):
         loop = _case_numba if kernel == "numba" else _case_loop
         for c in range(Cn):
             u = st["u_all"][st["u_off"][c]:st["u_off"][c + 1]]
-            cs, ts = slice(st["cum_off"][c], st["cum_off"][c + 1]), slice(st["tr_off"][c], st["tr_off"][c + 1])
+            cs = slice(st["cum_off"][c], st["cum_off"][c + 1])
+            ts = slice(st["tr_off"][c], st["tr_off"][c + 1])
             with np.errstate(over="ignore", invalid="ignore"):
                 loop(*[a[c] for a in args], u, st["G0"][c], st["G1"][c], st["cum_every"][c],
                      st["trace_every"][c], st["dwell_edges"][c], sums[c], share_steps[c],

@@ -215,7 +215,8 @@ def test_divergence_is_an_error_alone_and_a_flag_in_a_batch():
     unstable = LTISystem([[50.0]], [[1.0]], [[1.0]], [[0.0]])
     with pytest.raises(UnstableError, match="overflowed"):
         simulate_stream(unstable, Sinusoids([1.0], [1.0]), 30.0, 1e-3)
-    cases = [Case(unstable, Sinusoids([1.0], [1.0]), 30.0, 1e-3), Case(SCALAR, Sinusoids([1.0], [1.0]), 1.0, 1e-3)]
+    tone = Sinusoids([1.0], [1.0])
+    cases = [Case(unstable, tone, 30.0, 1e-3), Case(SCALAR, tone, 1.0, 1e-3)]
     with pytest.warns(UnstableRunWarning, match=r"1 of 2 cases diverged.*\[0\]"):
         batch = simulate_batch(cases, cumulative_every=1.0)
     assert batch.diverged.tolist() == [True, False]
@@ -293,8 +294,9 @@ def test_sampled_signal_values_and_errors():
 def test_dwell_edges_beyond_the_horizon_catch_every_long_dwell():
     pm = paper_modes()
     kw = dict(law_bands=pm["bands"], law_Q=pm["Q"])
-    a = simulate_stream(pm["modes"], mixed_disturbance(0.1), 5.0, 1e-3, dwell_edges=[1e-3, 5e-3, np.inf], **kw)
-    b = simulate_stream(pm["modes"], mixed_disturbance(0.1), 5.0, 1e-3, dwell_edges=[1e-3, 5e-3, 1e17], **kw)
+    d = mixed_disturbance(0.1)
+    a = simulate_stream(pm["modes"], d, 5.0, 1e-3, dwell_edges=[1e-3, 5e-3, np.inf], **kw)
+    b = simulate_stream(pm["modes"], d, 5.0, 1e-3, dwell_edges=[1e-3, 5e-3, 1e17], **kw)
     assert a.dwell_counts.sum() == a.switches > 0
     assert a.dwell_counts.tolist() == b.dwell_counts.tolist()
 
