@@ -15,6 +15,7 @@ from ..frequency import band_peak, sigma_max
 from ..plant import LTISystem, Plant
 from ..random_systems import random_plant
 from ..synthesis import DEFAULT_EPSILON, SynthesisResult, optimize_gain, synthesize, synthesize_hinf
+from .bound_search import time_domain_bound_search
 from .cache import cached
 from .data import (
     aircraft,
@@ -1092,8 +1093,9 @@ def direct_crosscheck(n_plants: int = 4, *, seed: int = 7, kinds: tuple = ("LF",
 
 def record_part() -> RecordPart:
     """Record entries K_f1..K_e (gains), bound_f1..bound_e (printed bounds), hf_best, the ε scans,
-    paper Remark 3's gap, the direct-search cross-check, and the figure ``sigma_max`` (paper
-    Fig. 3).
+    paper Remark 3's gap, the direct-search cross-check, the printed bounds against time-domain
+    quantities (``bound_time_domain``, :mod:`fdsc.paper.bound_search`), and the figure
+    ``sigma_max`` (paper Fig. 3).
 
     Returns
     -------
@@ -1103,4 +1105,5 @@ def record_part() -> RecordPart:
             + epsilon_sensitivity("LF").to_record() + epsilon_sensitivity("MF").to_record()
             + remark3_gap().to_record()
             + direct_crosscheck().to_record()
+            + time_domain_bound_search().to_record()
             + sigma_curves(paper_gains()).to_record())

@@ -213,6 +213,7 @@ def test_record_part_ids_and_figure():
     part = record_part()
     ids = [e["id"] for e in part.entries]
     assert ids[:9] == [*GAIN_ORDER, "bound_f1", "bound_f2", "bound_f3", "bound_e", "hf_best"]
-    assert ids[9:] == ["epsilon_scan_lf", "epsilon_scan_mf", "remark3_gap", "lmi_vs_direct"]
+    assert ids[9:] == ["epsilon_scan_lf", "epsilon_scan_mf", "remark3_gap", "lmi_vs_direct",
+                        "bound_time_domain"]
     _check_part(part, ids)
     assert list(part.figures) == ["sigma_max"]

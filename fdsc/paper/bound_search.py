@@ -1,0 +1,572 @@
+"""Chapter 'passive_controllers', continued: the four bounds printed beside the gains of Sec. IV,
+searched for among time-domain quantities of the simulations of Sec. VI.
+
+The frequency-domain candidates (:func:`fdsc.paper.passive_controllers.bound_candidates`) reproduce
+only the bound printed beside K_f2. Sec. VI also computes time-domain quantities (paper Fig. 6
+plots the running L2-induced ratio ``√(∫₀ᵗ zᵀz / ∫₀ᵗ d²)``), so a printed bound may be one of
+them, read at the end of some run. This module runs every printed gain under every test signal
+of Sec. VI in one streamed batch and compares, for each gain, every quantity below with the
+bound printed beside it:
+
+* the L2-induced ratio ``√(∫₀ᵀ zᵀz / ∫₀ᵀ d²)`` from rest, and the energy ratio
+  ``∫₀ᵀ zᵀz / ∫₀ᵀ d²`` (its square: the paper writes γ where γ² belongs), at the "round"
+  horizons :data:`ROUND_HORIZONS` that lie inside the signal's run;
+* the limits of both as T → ∞ for the sums of sinusoids (closed form,
+  :func:`fdsc.frequency.steady_state_gain`);
+* the peak gain of each output alone, ``max |z_i(t)| / max |d(t)|`` over the samples in
+  ``[0, T)``, at the same horizons (from min/max traces, so no full trace is kept).
+
+A quantity picked after the fact as the nearest of many can be at best a match (equal to the
+printed precision; :data:`fdsc.paper.verdict.VERDICT_RULES`), so a bound is ``match`` if some
+candidate equals it to its printed precision (every such hit is listed) and ``not reproducible``
+otherwise. The first time each running ratio crosses the printed value is recorded for
+information only: a continuous curve that sweeps through a range crosses every value in it.
+"""
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._validation import as_count, as_positive
+from ..frequency import steady_state_gain
+from ..signals import Sinusoids
+from ..stream import Case, simulate_batch
+from .cache import cached
+from .data import (
+    STATIONARY_DT,
+    aircraft,
+    hf_disturbance,
+    lf_disturbance,
+    mixed_disturbance,
+    paper_data,
+    paper_gains,
+    piecewise_disturbance,
+)
+from .names import GAIN_ORDER
+from .results import RecordPart, entry, pick
+from .verdict import VERDICT_CLOSE_RTOL, verdict, worst_verdict
+
+__all__ = [
+    "ROUND_HORIZONS",
+    "RHO_P_GRID",
+    "RHO_T_GRID",
+    "STATIONARY_RUN",
+    "MIXED_RUN",
+    "PIECEWISE_T",
+    "RHO_P_STAR",
+    "L2_RATIO",
+    "ENERGY_RATIO",
+    "STEADY_STATE",
+    "SearchSignal",
+    "search_signals",
+    "TimeDomainCandidate",
+    "BoundMatch",
+    "match_bound",
+    "first_crossing",
+    "Crossing",
+    "TimeDomainBoundSearch",
+    "time_domain_bound_search",
+]
+
+#: Horizons (s) a simulation might have used; a signal is read only at those inside its run.
+ROUND_HORIZONS = (1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 300.0, 500.0, 1000.0, 1500.0)
+#: ρ_p of the mixed disturbances d_h + ρ_p d_l (paper Fig. 7 sweeps [0, 0.5]).
+RHO_P_GRID = (0.1, 0.2, 0.3, 0.4, 0.5)
+#: ρ_t of the piecewise disturbance, paper eq. (58) (paper Fig. 8 sweeps [0, 0.5]).
+RHO_T_GRID = (0.1, 0.5)
+#: Run length (s) under the LF and HF disturbances: not printed, so the longest round horizon.
+STATIONARY_RUN = 1500.0
+#: Run length (s) under the mixed disturbances: t ∈ [0, 500] (Sec. VI, paper Fig. 7).
+MIXED_RUN = 500.0
+#: T and ρ*_p of the piecewise disturbance (Sec. VI); its run is [0, 2T + ρ_t T).
+PIECEWISE_T, RHO_P_STAR = 500.0, 0.1
+#: Names of the quantities (the peak gains are named ``"peak gain of <output>"``).
+L2_RATIO, ENERGY_RATIO = "L2 ratio", "energy ratio"
+#: The horizon of a steady-state limit.
+STEADY_STATE = math.inf
+
+
+@dataclass(frozen=True)
+class SearchSignal:
+    """A test signal of Sec. VI and the length of its run.
+
+    Parameters
+    ----------
+    label : str
+        Its name in tables and in the record.
+    d : Sinusoids or Piecewise
+        The disturbance.
+    run : float
+        Length of the run in s.
+    """
+
+    label: str
+    d: object
+    run: float
+
+    @property
+    def stationary(self) -> bool:
+        """A sum of sinusoids (it has steady-state limits)."""
+        return isinstance(self.d, Sinusoids)
+
+
+def search_signals() -> tuple:
+    """The test signals of Sec. VI: LF, HF, the mixed ones and the piecewise ones.
+
+    Returns
+    -------
+    tuple of SearchSignal
+        LF (paper eq. (56)) and HF (paper eq. (57)) over :data:`STATIONARY_RUN`; d_h + ρ_p d_l
+        for ρ_p in :data:`RHO_P_GRID` over :data:`MIXED_RUN`; paper eq. (58) with T = 500,
+        ρ*_p = 0.1 and ρ_t in :data:`RHO_T_GRID` over its whole length.
+
+    Examples
+    --------
+    >>> [(s.label, s.run) for s in search_signals()][-1]
+    ('piecewise, rho_t = 0.5', 1250.0)
+    """
+    out = [SearchSignal("LF", lf_disturbance(), STATIONARY_RUN),
+           SearchSignal("HF", hf_disturbance(), STATIONARY_RUN)]
+    out += [SearchSignal(f"mixed, rho_p = {r:g}", mixed_disturbance(r), MIXED_RUN) for r in RHO_P_GRID]
+    out += [SearchSignal(f"piecewise, rho_t = {r:g}", piecewise_disturbance(PIECEWISE_T, r, RHO_P_STAR),
+                         (2 + r) * PIECEWISE_T) for r in RHO_T_GRID]
+    return tuple(out)
+
+
+@dataclass(frozen=True)
+class TimeDomainCandidate:
+    """One time-domain quantity of one closed loop under one signal.
+
+    Parameters
+    ----------
+    gain : str
+        The printed gain of the closed loop.
+    signal : str
+        Label of the test signal (:func:`search_signals`).
+    quantity : str
+        :data:`L2_RATIO`, :data:`ENERGY_RATIO` or ``"peak gain of <output>"``.
+    horizon : float
+        T in s, or :data:`STEADY_STATE` (∞) for the limit as T → ∞.
+    value : float
+        The quantity's value.
+    """
+
+    gain: str
+    signal: str
+    quantity: str
+    horizon: float
+    value: float
+
+    @property
+    def horizon_label(self) -> str | float:
+        """The horizon in s, or ``"steady state"``."""
+        return "steady state" if math.isinf(self.horizon) else self.horizon
+
+    def describe(self) -> str:
+        """The candidate in words, e.g. ``"L2 ratio under HF at T = 100 s (0.17135)"``.
+
+        Returns
+        -------
+        str
+        """
+        when = "in steady state" if math.isinf(self.horizon) else f"at T = {self.horizon:g} s"
+        return f"{self.quantity} under {self.signal} {when} ({self.value:.5f})"
+
+    def to_dict(self) -> dict:
+        """``{signal, quantity, horizon_s, value}`` with plain values (for the record).
+
+        Returns
+        -------
+        dict
+        """
+        return {"signal": self.signal, "quantity": self.quantity, "horizon_s": self.horizon_label,
+                "value": float(self.value)}
+
+
+@dataclass(frozen=True)
+class BoundMatch:
+    """A printed bound against the candidates of its gain (see :func:`match_bound`).
+
+    Parameters
+    ----------
+    gain : str
+        The printed gain.
+    paper : float
+        The printed bound.
+    nearest : tuple of TimeDomainCandidate
+        The candidates nearest to ``paper``, nearest first.
+    hits : tuple of TimeDomainCandidate
+        Every candidate equal to ``paper`` to its printed precision, in the order given.
+    verdict : str
+        ``"match"`` if there is a hit, else ``"not reproducible"``.
+    n_candidates : int
+        Candidates compared.
+    n_within_close : int
+        Candidates within :data:`~fdsc.paper.verdict.VERDICT_CLOSE_RTOL` (1 %) of ``paper``.
+    decimals : int
+        Decimals printed.
+    """
+
+    gain: str
+    paper: float
+    nearest: tuple
+    hits: tuple
+    verdict: str
+    n_candidates: int
+    n_within_close: int
+    decimals: int
+
+    @property
+    def best(self) -> TimeDomainCandidate:
+        """The nearest candidate."""
+        return self.nearest[0]
+
+    def rows(self) -> list:
+        """The nearest candidates, then the hits not among them: ``signal, quantity, horizon,
+        value, abs_diff, hit``.
+
+        Returns
+        -------
+        list of dict
+            For :func:`fdsc.paper.report.html_table`.
+        """
+        shown = self.nearest + tuple(h for h in self.hits if h not in self.nearest)
+        return [{"signal": c.signal, "quantity": c.quantity, "horizon": c.horizon_label,
+                 "value": c.value, "abs_diff": abs(c.value - self.paper),
+                 "hit": "yes" if c in self.hits else ""} for c in shown]
+
+
+def match_bound(gain: str, paper: float, candidates, *, decimals: int = 4, n_nearest: int = 5) -> BoundMatch:
+    """Compare a printed bound with candidates picked after the fact.
+
+    Parameters
+    ----------
+    gain : str
+        The printed gain; every candidate must belong to it.
+    paper : float
+        The printed bound (> 0).
+    candidates : sequence of TimeDomainCandidate
+        The quantities tried (finite values).
+    decimals : int, optional
+        Decimals printed.
+    n_nearest : int, optional
+        How many nearest candidates to keep.
+
+    Returns
+    -------
+    BoundMatch
+        A hit is a candidate with ``verdict(paper, value, decimals, after_the_fact=True) ==
+        "match"``; ties in distance keep the order given.
+
+    Raises
+    ------
+    ValueError
+        If there is no candidate, one belongs to another gain or has a value that is not finite,
+        ``paper`` is not positive, ``decimals`` is negative or ``n_nearest`` is below 1.
+
+    Examples
+    --------
+    >>> c = [TimeDomainCandidate("K", "HF", L2_RATIO, T, v) for T, v in ((1.0, 0.5), (2.0, 0.34426))]
+    >>> m = match_bound("K", 0.3443, c)
+    >>> m.verdict, m.best.horizon, len(m.hits)
+    ('match', 2.0, 1)
+    """
+    paper = as_positive("paper", paper)
+    decimals, n_nearest = as_count("decimals", decimals, 0), as_count("n_nearest", n_nearest)
+    candidates = tuple(candidates)
+    if not candidates:
+        raise ValueError("candidates must hold at least one TimeDomainCandidate")
+    for c in candidates:
+        if c.gain != gain:
+            raise ValueError(f"candidates must all belong to gain {gain!r}, but found one of {c.gain!r}")
+        if not math.isfinite(c.value):
+            raise ValueError(f"candidates must have finite values, but found {c.value} ({c.quantity}, "
+                             f"{c.signal}, T = {c.horizon_label})")
+    diffs = [abs(c.value - paper) for c in candidates]
+    order = sorted(range(len(candidates)), key=lambda i: diffs[i])
+    hits = tuple(c for c in candidates if verdict(paper, c.value, decimals, after_the_fact=True) == "match")
+    near = sum(d <= VERDICT_CLOSE_RTOL * paper for d in diffs)
+    return BoundMatch(gain, paper, tuple(candidates[i] for i in order[:n_nearest]), hits,
+                      "match" if hits else "not reproducible", len(candidates), near, decimals)
+
+
+def first_crossing(t, curve, level: float) -> float:
+    """First time at which a sampled curve reaches ``level`` (linear between samples).
+
+    Parameters
+    ----------
+    t : (M,) array_like
+        Increasing times in s.
+    curve : (M,) array_like
+        Values at ``t``; NaN samples (e.g. a ratio at t = 0) are skipped.
+    level : float
+        The value looked for.
+
+    Returns
+    -------
+    float
+        In s; NaN if the curve never reaches ``level``.
+
+    Raises
+    ------
+    ValueError
+        If ``t`` and ``curve`` are not vectors of one length.
+
+    Examples
+    --------
+    >>> first_crossing([0.0, 1.0, 2.0, 3.0], [np.nan, 0.0, 1.0, 0.0], 0.25)
+    1.25
+    """
+    t, c = np.asarray(t, dtype=float), np.asarray(curve, dtype=float)
+    if t.shape != c.shape or t.ndim != 1:
+        raise ValueError(f"t and curve must be vectors of one length, but found {t.shape} and {c.shape}")
+    ok = np.isfinite(c)
+    t, s = t[ok], c[ok] - level
+    at = np.flatnonzero(s == 0)
+    between = np.flatnonzero(s[:-1] * s[1:] < 0)
+    k_at = at[0] if at.size else s.size
+    if between.size and between[0] < k_at:
+        k = between[0]
+        return float(t[k] + (t[k + 1] - t[k]) * s[k] / (s[k] - s[k + 1]))
+    return float(t[k_at]) if at.size else math.nan
+
+
+@dataclass(frozen=True)
+class Crossing:
+    """First time a running ratio of one loop under one signal reaches the printed bound.
+
+    Parameters
+    ----------
+    gain : str
+        The printed gain.
+    signal : str
+        Label of the test signal.
+    quantity : str
+        :data:`L2_RATIO` or :data:`ENERGY_RATIO`.
+    t : float
+        In s (coarse grid, linear in between); NaN if the curve never reaches the bound.
+    """
+
+    gain: str
+    signal: str
+    quantity: str
+    t: float
+
+
+@dataclass(frozen=True)
+class TimeDomainBoundSearch:
+    """The printed bounds against time-domain quantities (see :func:`time_domain_bound_search`).
+
+    Parameters
+    ----------
+    bounds : tuple of BoundMatch
+        One per gain, in the order of :data:`fdsc.paper.names.GAIN_ORDER`.
+    candidates : tuple of TimeDomainCandidate
+        Every quantity computed.
+    crossings : tuple of Crossing
+        One per gain, signal and running ratio.
+    signals : dict
+        ``{label: length of its run in s}``.
+    horizons : tuple of float
+        The round horizons asked for (s).
+    t_cum : dict
+        ``{signal: (M,) ndarray}``: coarse grid of the running ratios (s).
+    l2_curves : dict
+        ``{signal: {gain: (M,) ndarray}}``: running L2 ratios on ``t_cum``.
+    dt, coarse_step, peak_bin : float
+        Step, coarse grid and min/max bin of the runs (s).
+    """
+
+    bounds: tuple
+    candidates: tuple
+    crossings: tuple
+    signals: dict
+    horizons: tuple
+    t_cum: dict
+    l2_curves: dict
+    dt: float
+    coarse_step: float
+    peak_bin: float
+
+    def __getitem__(self, gain: str) -> BoundMatch:
+        """The bound of one gain.
+
+        Parameters
+        ----------
+        gain : str
+            Name of the gain.
+
+        Returns
+        -------
+        BoundMatch
+        """
+        return pick(self.bounds, "gain", gain)
+
+    @property
+    def quantities(self) -> tuple:
+        """The quantities tried, in order."""
+        return tuple(dict.fromkeys(c.quantity for c in self.candidates))
+
+    @property
+    def tried(self) -> dict:
+        """Counts of what was tried: gains, signals, quantities, round horizons used, candidates
+        per bound."""
+        used = sorted({c.horizon for c in self.candidates if math.isfinite(c.horizon)})
+        return {"gains": len(self.bounds), "signals": len(self.signals), "quantities": len(self.quantities),
+                "round_horizons_s": [float(h) for h in used],
+                "candidates_per_bound": int(self.bounds[0].n_candidates)}
+
+    def rows(self) -> list:
+        """One row per bound: ``gain, paper, signal, quantity, horizon, value, abs_diff, hits,
+        verdict`` of the nearest candidate.
+
+        Returns
+        -------
+        list of dict
+            For :func:`fdsc.paper.report.html_table`.
+        """
+        return [{"gain": b.gain, "paper": b.paper, **b.rows()[0], "hits": len(b.hits),
+                 "within_1pct": b.n_within_close, "verdict": b.verdict} for b in self.bounds]
+
+    def crossing_rows(self, gain: str | None = None) -> list:
+        """The running ratios that reach the printed bound: ``gain, signal, quantity, t``.
+
+        Parameters
+        ----------
+        gain : str, optional
+            Only this gain (default all).
+
+        Returns
+        -------
+        list of dict
+        """
+        return [vars(c).copy() for c in self.crossings
+                if math.isfinite(c.t) and gain in (None, c.gain)]
+
+    def to_record(self) -> RecordPart:
+        """Record entry ``bound_time_domain``.
+
+        Returns
+        -------
+        RecordPart
+        """
+        recomputed = {b.gain: {**b.best.to_dict(), "abs_diff": abs(float(b.best.value) - b.paper),
+                               "verdict": b.verdict, "hits": [h.to_dict() for h in b.hits]}
+                      for b in self.bounds}
+        tried = self.tried
+        found = "; ".join(f"{b.gain} {b.verdict} (" + (", ".join(h.describe() for h in b.hits) if b.hits
+                                                       else f"nearest {b.best.describe()}") + ")"
+                          for b in self.bounds)
+        note = (f"Tried {tried['candidates_per_bound']} time-domain quantities per printed gain (L2 and "
+                f"energy ratios from rest at round horizons of {tried['round_horizons_s'][0]:g} to "
+                f"{tried['round_horizons_s'][-1]:g} s and their steady-state limits, peak gain of each "
+                f"output, under the {tried['signals']} test signals of Sec. VI), a hit being equal to "
+                f"the printed bound to its precision and picked after the fact among that many: {found}. "
+                "The first crossings are for information only: a continuous curve that sweeps through "
+                "a range crosses every value in it.")
+        crossings = {b.gain: {f"{c['quantity']}, {c['signal']}": float(c["t"])
+                              for c in self.crossing_rows(b.gain)} for b in self.bounds}
+        return RecordPart((entry(
+            "bound_time_domain",
+            "Sec. IV, the four bounds printed beside the gains; time-domain quantities of Sec. VI",
+            {b.gain: b.paper for b in self.bounds}, recomputed,
+            worst_verdict(b.verdict for b in self.bounds), note,
+            tried={**tried, "signal_runs_s": {k: float(v) for k, v in self.signals.items()},
+                   "quantity_names": list(self.quantities), "dt_s": self.dt},
+            within_1pct={b.gain: int(b.n_within_close) for b in self.bounds},
+            first_crossing_s=crossings),))
+
+
+def _check_grid(name, seconds, step, what):
+    k = round(seconds / step)
+    if k < 1 or abs(k * step - seconds) > 1e-9 * seconds:
+        raise ValueError(f"{name} ({seconds:g} s) must be a multiple of {what} ({step:g} s)")
+
+
+@cached
+def time_domain_bound_search(horizons: tuple = ROUND_HORIZONS, *, dt: float = STATIONARY_DT,
+                             coarse_step: float = 0.1, peak_bin: float = 1.0,
+                             decimals: int = 4) -> TimeDomainBoundSearch:
+    """Each printed bound of Sec. IV against time-domain quantities of its gain's closed loop.
+
+    Every printed gain runs from rest under every signal of :func:`search_signals`, in one
+    :func:`fdsc.simulate_batch` call, up to the end of the signal or the largest horizon,
+    whichever comes first. The quantities are those of the module docstring: L2 and energy ratios
+    at each horizon inside the run and as T → ∞ (sums of sinusoids only), and the peak gain of each
+    output at each horizon. Each bound is then matched by :func:`match_bound`, and the first time
+    each running ratio reaches it is recorded by :func:`first_crossing`.
+
+    Parameters
+    ----------
+    horizons : tuple of float, optional
+        Horizons T in s, multiples of ``coarse_step`` and ``peak_bin``.
+    dt : float, optional
+        Step of the runs in s.
+    coarse_step : float, optional
+        Grid (s) of the running integrals; an even number of steps.
+    peak_bin : float, optional
+        Bin (s) of the min/max traces behind the peak gains.
+    decimals : int, optional
+        Decimals of the printed bounds.
+
+    Returns
+    -------
+    TimeDomainBoundSearch
+
+    Raises
+    ------
+    ValueError
+        If a horizon is not a positive multiple of ``coarse_step`` and ``peak_bin``, or if
+        ``coarse_step`` or ``peak_bin`` does not fit ``dt``.
+
+    Notes
+    -----
+    The integrals are Simpson's rule on the samples (:mod:`fdsc.stream`); the peak gains are
+    maxima over the samples in ``[0, T)``.
+
+    Examples
+    --------
+    >>> s = time_domain_bound_search((1.0, 2.0))
+    >>> s.tried["candidates_per_bound"], s["K_e"].verdict    # 9 signals x 2 horizons x 5, 7 x 2
+    (104, 'not reproducible')
+    """
+    horizons = tuple(sorted({float(as_positive("horizons", h)) for h in horizons}))
+    for h in horizons:
+        _check_grid("horizons", h, coarse_step, "coarse_step")
+        _check_grid("horizons", h, peak_bin, "peak_bin")
+    plant, gains = aircraft(), paper_gains()
+    printed = {k: v["bound"] for k, v in paper_data("controllers").items() if k in GAIN_ORDER}
+    signals = search_signals()
+    outputs = plant.names["output_names"]
+    runs = {s.label: min(s.run, horizons[-1]) for s in signals}
+    cases = [Case(plant.closed_loop(gains[g]), s.d, runs[s.label], dt, label=(g, s.label))
+             for g in GAIN_ORDER for s in signals]
+    batch = simulate_batch(cases, cumulative_every=coarse_step, trace_every=peak_bin)
+    cands = {g: [] for g in GAIN_ORDER}
+    crossings, t_cum, l2 = [], {}, {s.label: {} for s in signals}
+    for case, res in zip(cases, batch, strict=True):
+        g, label = case.label
+        t, ratio = res.running_l2()
+        t_cum[label], l2[label][g] = t, ratio
+        zmax = np.maximum(np.abs(res.trace.z_lo), np.abs(res.trace.z_hi))
+        dmax = np.maximum(np.abs(res.trace.d_lo), np.abs(res.trace.d_hi))
+        for T in (h for h in horizons if h <= runs[label]):
+            k, nb = round(T / coarse_step), round(T / peak_bin)
+            peak = zmax[:nb].max(axis=0) / dmax[:nb].max()
+            cands[g] += [TimeDomainCandidate(g, label, L2_RATIO, T, float(ratio[k])),
+                         TimeDomainCandidate(g, label, ENERGY_RATIO, T, float(ratio[k] ** 2))]
+            cands[g] += [TimeDomainCandidate(g, label, f"peak gain of {name}", T, float(p))
+                         for name, p in zip(outputs, peak, strict=True)]
+        crossings += [Crossing(g, label, L2_RATIO, first_crossing(t, ratio, printed[g])),
+                      Crossing(g, label, ENERGY_RATIO, first_crossing(t, ratio**2, printed[g]))]
+    for g in GAIN_ORDER:
+        cl = plant.closed_loop(gains[g])
+        for s in (s for s in signals if s.stationary):
+            ss = steady_state_gain(cl, s.d.frequencies, s.d.amplitudes)
+            cands[g] += [TimeDomainCandidate(g, s.label, L2_RATIO, STEADY_STATE, ss),
+                         TimeDomainCandidate(g, s.label, ENERGY_RATIO, STEADY_STATE, ss**2)]
+    bounds = tuple(match_bound(g, printed[g], cands[g], decimals=decimals) for g in GAIN_ORDER)
+    return TimeDomainBoundSearch(bounds, tuple(c for g in GAIN_ORDER for c in cands[g]), tuple(crossings),
+                                 {s.label: float(runs[s.label]) for s in signals}, horizons, t_cum, l2,
+                                 float(dt), float(coarse_step), float(peak_bin))
