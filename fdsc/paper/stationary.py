@@ -186,7 +186,7 @@ def stationary_runs(kind: str, *, horizon: float = STATIONARY_HORIZON, dt: float
     Notes
     -----
     The controllers are PassC-EF (K_e), PassC-LF (K_f1), PassC-HF (K_f3) and FDSC (law of paper
-    eq. (31), paper's Q's), Sec. VI; the horizon is not printed (we use
+    eq. (31), paper's Q's), Sec. IV; the horizon is not printed (we use
     :data:`~fdsc.paper.data.STATIONARY_HORIZON`).
     """
     d = paper_disturbance(kind)
@@ -317,7 +317,7 @@ class LFOutputClaims:
         RecordPart
         """
         return RecordPart((_claims_entry(
-            "lf_outputs_claims", "Sec. VI, text on paper Fig. 4", self.claims,
+            "lf_outputs_claims", "Sec. IV, text on paper Fig. 4", self.claims,
             "energies and peak outputs of the runs of paper Fig. 4 (our horizon); each sentence "
             "read as the stated criterion.",
             energy_ratio_fdsc_to_passc_lf=self.ratio_fdsc_lf,
@@ -419,7 +419,7 @@ class HFOutputClaims:
         RecordPart
         """
         return RecordPart((_claims_entry(
-            "hf_outputs_claims", "Sec. VI, text on paper Fig. 5", self.claims,
+            "hf_outputs_claims", "Sec. IV, text on paper Fig. 5", self.claims,
             "peak |q| (paper Fig. 5 a plots q; z_1 = 4q) of the runs of paper Fig. 5 (our "
             "horizon); each sentence read as the stated criterion.",
             q_peak=self.q_peak, energy_ratio_fdsc_to_passc_hf=self.ratio_fdsc_hf),))
@@ -505,7 +505,7 @@ class L2Claims:
         RecordPart
         """
         return RecordPart((_claims_entry(
-            "hf_l2_claims", "Sec. VI, text on paper Fig. 6", self.claims,
+            "hf_l2_claims", "Sec. IV, text on paper Fig. 6", self.claims,
             "running L2-induced norms at the horizon of the runs of paper Fig. 6; PassC-HF's "
             "slowest pole keeps its start-up transient in the ratio at that horizon, so FDSC's "
             "advantage over PassC-HF is compared with PassC-HF's steady-state limit too.",
