@@ -33,7 +33,8 @@ CONTROLLER_GAINS = {"PassC-EF": "K_e", "PassC-LF": "K_f1", "PassC-HF": "K_f3"}
 
 #: The record's figure entries, named by content, with the number of the paper figure each
 #: reproduces (numbers of the compiled tex, whose Fig. 2 is the code-availability box).
-FIGURE_IDS = {"sigma_max": 3, "lf_outputs": 4, "hf_outputs": 5, "hf_l2": 6}
+FIGURE_IDS = {"sigma_max": 3, "lf_outputs": 4, "hf_outputs": 5, "hf_l2": 6, "mixed_sweep": 7,
+              "piecewise_sweep": 8}
 
 
 #: Index of the in-band mode of the paper's FDSC (PassC-HF = K_f3 on Ω_3; the paper's example has

@@ -23,15 +23,31 @@ __all__ = [
     "plot_outputs",
     "plot_l2_curves",
     "plot_sigma_timeline",
+    "plot_sweep",
+    "plot_p1",
+    "plot_p2",
 ]
 
 
 CONTROLLER_STYLES = {"PassC-EF": ("tab:blue", "-"), "PassC-LF": ("tab:red", "-"),
                      "PassC-HF": ("gold", "-"), "FDSC": ("tab:purple", "-"),
-                     "FDSC (our Q)": ("tab:green", "--")}
+                     "FDSC (our Q)": ("tab:green", "--"), "FDSC (candidate ẋ)": ("tab:brown", ":")}
 
 
 BAND_COLORS = {"LF": "tab:red", "MF": "tab:green", "HF": "tab:orange", "EF": "tab:blue"}
+
+
+def _label(name, factor=1.0):
+    """Legend text of a controller: ẋ in mathtext (the plain glyph is missing from the fonts),
+    and a scaling as the paper states it (× 1/5000)."""
+    text = name.replace("ẋ", r"$\dot x$")
+    if factor == 1.0:
+        return text
+    return f"{text} × 1/{1 / factor:g}" if factor < 1 else f"{text} × {factor:g}"
+
+
+def _outside_legend(ax):
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
 
 
 def _axes(ax, figsize=(7, 4)):
@@ -481,4 +497,124 @@ def plot_sigma_timeline(data, ax: plt.Axes | None = None) -> plt.Axes:
     ax.set_xlabel("$t$ [s]  (dotted: disturbance switches HF → LF → HF)")
     ax.set_title(f"share of each {data.bin * 1e3:g} ms bin on PassC-HF ($K_2$): full bar = all "
                  "of it, no bar = all on PassC-LF ($K_1$)", fontsize=9)
+    return ax
+
+
+def plot_sweep(data, ax: plt.Axes | None = None, *, names: list | None = None, scale: dict | None = None,
+               log: bool = False, crossover: dict | None = None, legend: str | None = "inside") -> plt.Axes:
+    """Output energy against the sweep parameter (paper Figs. 7 and 8), one line per controller.
+
+    Parameters
+    ----------
+    data : SweepRuns
+        :func:`fdsc.paper.nonstationary.mixed_sweep`,
+        :func:`~fdsc.paper.nonstationary.piecewise_sweep` or
+        :func:`~fdsc.paper.nonstationary.extended_piecewise`.
+    ax : matplotlib Axes, optional
+        Axes to draw on (default: a new figure).
+    names : list of str, optional
+        Controllers to draw (default all).
+    scale : dict, optional
+        ``{controller: factor}`` applied before drawing (stated in the legend), as the paper
+        scales PassC-HF.
+    log : bool, optional
+        Logarithmic energy axis.
+    crossover : dict, optional
+        ``{label: parameter value}`` drawn as vertical lines.
+    legend : {"inside", "outside", None}, optional
+        Where to put the legend (None: no legend, and no labels, for a second call on the same
+        Axes).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    ax = _axes(ax)
+    for name in names or data.names:
+        color, ls = CONTROLLER_STYLES.get(name, ("k", "-"))
+        f = (scale or {}).get(name, 1.0)
+        ax.plot(data.param, f * data.energy[name], color=color, ls=ls, marker="o", ms=3,
+                label=None if legend is None else _label(name, f))
+    for k, (label, x) in enumerate((crossover or {}).items()):
+        if x is not None:
+            ax.axvline(x, color="0.3", ls=(0, (4, 2 + 2 * k)), lw=1, label=label)
+    sym = r"\rho_p" if data.family == "mixed" else r"\rho_t"
+    span = (r"$[0, 500]$" if data.family == "mixed" else r"$[0, 1000 + 500\rho_t]$")
+    ax.set_xlabel(f"${sym}$ [-]")
+    ax.set_ylabel(rf"$\int z^\top z\,dt$ over {span} [-]")
+    if log:
+        ax.set_yscale("log")
+    if legend == "outside":
+        _outside_legend(ax)
+    elif legend == "inside":
+        ax.legend(fontsize=7)
+    return ax
+
+
+def plot_p1(data, ax: plt.Axes | None = None, *, names: tuple = ("PassC-EF", "PassC-LF", "PassC-HF", "FDSC",
+                                                                  "FDSC (our Q)")) -> plt.Axes:
+    """(P.1): long-run √(∫zᵀz/∫d²) against the in-band dominance α(Ω_3), with γ(Ω_in, K_in).
+
+    Parameters
+    ----------
+    data : P1Result
+        :func:`fdsc.paper.nonstationary.p1_global`.
+    ax : matplotlib Axes, optional
+        Axes to draw on (default: a new figure).
+    names : tuple of str, optional
+        Controllers to draw.
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    ax = _axes(ax)
+    rows = [r for r in data.rows if r.alpha_in > 0]
+    alpha = np.array([r.alpha_in for r in rows])
+    for name in names:
+        color, ls = CONTROLLER_STYLES.get(name, ("k", "-"))
+        ax.plot(alpha, np.sqrt([r.tail_ratio[name] for r in rows]), color=color, ls=ls, marker="o",
+                ms=3, label=_label(name))
+    ax.axhline(data.gamma_in, color="k", ls="--", lw=1,
+               label=rf"$\gamma(\Omega_{{in}}, K_{{in}})$ = {data.gamma_in:.4f} "
+                     r"(band peak, printed $K_{f_3}$)")
+    ax.axhline(data.gamma_in_printed, color="k", ls=":", lw=1,
+               label=f"bound printed beside $K_{{f_3}}$: {data.gamma_in_printed:g}")
+    ax.set_xlabel(r"in-band dominance $\alpha(\Omega_3) = 1/(1 + \rho_p^2)$ [-]")
+    ax.set_ylabel(r"$\sqrt{\int z^\top z / \int d^2}$ over $[250, 500]$ [-]")
+    ax.set_yscale("log")
+    ax.invert_xaxis()
+    _outside_legend(ax)
+    return ax
+
+
+def plot_p2(data, ax: plt.Axes | None = None) -> plt.Axes:
+    """(P.2): the worst localized √(∫zᵀz/∫d²) against the window length, with γ_tol.
+
+    Parameters
+    ----------
+    data : P2Result
+        :func:`fdsc.paper.nonstationary.p2_localized`.
+    ax : matplotlib Axes, optional
+        Axes to draw on (default: a new figure).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    ax = _axes(ax)
+    w = np.array(data.windows)
+    for name in data.worst[data.windows[0]]:
+        color, ls = CONTROLLER_STYLES.get(name, ("k", "-"))
+        ax.plot(w, [data.worst[x][name] for x in data.windows], color=color, ls=ls, marker="o", ms=4,
+                label=_label(name))
+    ax.axhline(data.gamma_tol, color="k", ls="--", lw=1,
+               label=rf"$\gamma_{{tol}}$ = {data.gamma_tol:g} (ours)")
+    ax.axhline(data.gamma_out_in, color="k", ls=":", lw=1,
+               label=rf"$\gamma(\Omega_1, K_{{f_3}})$ = {data.gamma_out_in:.4g}")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("window length $T_l$ [s]")
+    ax.set_ylabel(r"largest $\sqrt{\int_{T_l} z^\top z / \int_{T_l} d^2}$ [-]")
+    _outside_legend(ax)
     return ax

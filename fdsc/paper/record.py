@@ -6,9 +6,11 @@
 
 
 from . import (
+    claims,
     frequency_ranges,
     frequency_selective,
     gkyp_lemma,
+    nonstationary,
     passive_controllers,
     stationary,
     switching_law,
@@ -37,8 +39,9 @@ PAPER_FIGURES = {
     4: ("q, delta_E, delta_PTV under the LF disturbance, four controllers", "stationary"),
     5: ("the same under the HF disturbance", "stationary"),
     6: ("L2-induced norm over time under the HF disturbance", "stationary"),
-    7: ("output energy over [0, 500] against rho_p (mixed disturbance)", None),
-    8: ("output energy over [0, 1000 + 500 rho_t] against rho_t (piecewise disturbance)", None),
+    7: ("output energy over [0, 500] against rho_p (mixed disturbance)", "nonstationary"),
+    8: ("output energy over [0, 1000 + 500 rho_t] against rho_t (piecewise disturbance)",
+        "nonstationary"),
 }
 
 
@@ -75,15 +78,18 @@ def figure_status(record):
 
 #: The chapters that contribute to the record, in the record's order.
 CHAPTERS = (frequency_ranges, gkyp_lemma, passive_controllers, frequency_selective, theorem1, switching_law,
-            stationary)
+            stationary, nonstationary)
 
 
 @cached
 def reproduction_record():
-    """The reproduction record ``{"entries": [...], "figures": {...}, "environment": {...}}``.
+    """The reproduction record ``{"entries": [...], "figures": {...}, "claims": [...],
+    "environment": {...}}``.
 
     The sum of the chapters' record parts (each chapter's ``record_part()``), in the order of
-    :data:`CHAPTERS`, and the environment.
+    :data:`CHAPTERS`, the claims checklist (:func:`fdsc.paper.claims.claims_checklist`) with its
+    step-halving entry, and the environment. The format is the JSON Schema
+    ``fdsc/paper/data/record.schema.json``.
 
     Returns
     -------
@@ -92,4 +98,6 @@ def reproduction_record():
     part = RecordPart()
     for chapter in CHAPTERS:
         part = part + chapter.record_part()
-    return {"entries": list(part.entries), "figures": dict(part.figures), "environment": environment()}
+    part = part + claims.halving_record()
+    return {"entries": list(part.entries), "figures": dict(part.figures),
+            "claims": [row.to_dict() for row in claims.claims_checklist()], "environment": environment()}

@@ -41,6 +41,17 @@ def test_record_entries_have_the_required_fields():
     # transient of K_f3's slow pole at -0.0165 is still in the 500 s integral)
     for c, ss in l2["l2_induced_norm_steady_state"].items():
         assert ss < l2["l2_induced_norm_final"][c] < 1.2 * ss, c
+    # paper Figs. 7 and 8: the grids the issue asks for, unscaled energies, the bisected crossover
+    ms, ps = rec["figures"]["mixed_sweep"], rec["figures"]["piecewise_sweep"]
+    assert len(ms["rho_p"]) >= 21 and len(ps["rho_t"]) >= 11 and ps["T"] == 500 and ps["rho_p_star"] == 0.1
+    for fig in (ms, ps):
+        assert {"PassC-EF", "PassC-LF", "PassC-HF", "FDSC"} <= set(fig["energy"])
+    assert max(ms["energy"]["PassC-HF"]) > 1e6        # unscaled (the paper draws it × 1/5000)
+    assert 0 < ms["crossover"]["PassC-LF"] <= ms["crossover"]["PassC-EF"] < 0.5
+    assert ms["crossover"]["tolerance"] <= 1e-3
+    assert len(rec["claims"]) >= 10
+    assert {c["verdict"] for c in rec["claims"]} <= {"PASS", "PARTLY", "FAIL"}
+    assert by_id["claims_step_halving"]["all_equal"] is True
     hb = by_id["hf_best"]["recomputed"]
     assert hb["in_band"] <= hb["gamma_lmi"] * (1 + 1e-5)
     assert rec["environment"]["packages"]["numpy"] == np.__version__
