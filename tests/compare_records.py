@@ -7,7 +7,8 @@ relative (``|a − b| ≤ rtol · max(|a|, |b|)``; two zeros are equal), strings
 and the structure (keys, list lengths) exactly. The environment (versions, timings) is ignored.
 With ``--allow-new``, entries and figures present only in NEW (additions) are listed but do not
 count as differences. With ``--ignore KEY`` (repeatable), values under a key of that name are not
-compared (for prose such as ``source`` whose wording was corrected). Exit status 0 if the records agree, 1 otherwise, with one line per difference.
+compared (for prose such as ``source`` whose wording was corrected). Exit status 0 if the
+records agree, 1 otherwise, with one line per difference.
 """
 
 import argparse

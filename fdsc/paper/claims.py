@@ -15,19 +15,15 @@ from .names import CONTROLLERS
 from .nonstationary import PAPER_CROSSOVER, SweepStudy, crossover_in, sweep_study
 from .results import RecordPart, entry
 from .stationary import hf_l2_claims, hf_output_claims, lf_output_claims, stationary_runs
+from .verdict import CLAIM_VERDICTS
 
 __all__ = [
-    "CLAIM_VERDICTS",
     "ClaimRow",
     "stationary_claims",
     "sweep_claims",
     "claims_checklist",
     "halving_record",
 ]
-
-
-#: The verdicts of a claim, from best to worst.
-CLAIM_VERDICTS = ("PASS", "PARTLY", "FAIL")
 
 
 @dataclass(frozen=True)

@@ -10,6 +10,7 @@ from . import (
     frequency_ranges,
     frequency_selective,
     gkyp_lemma,
+    inputs,
     nonstationary,
     passive_controllers,
     stationary,
@@ -76,9 +77,9 @@ def figure_status(record):
     return rows
 
 
-#: The chapters that contribute to the record, in the record's order.
-CHAPTERS = (frequency_ranges, gkyp_lemma, passive_controllers, frequency_selective, theorem1, switching_law,
-            stationary, nonstationary)
+#: The chapters that contribute to the record, in the record's order (first the printed inputs).
+CHAPTERS = (inputs, frequency_ranges, gkyp_lemma, passive_controllers, frequency_selective, theorem1,
+            switching_law, stationary, nonstationary)
 
 
 @cached

@@ -7,6 +7,8 @@ __all__ = [
     "VERDICTS",
     "VERDICT_RULES",
     "VERDICT_CLOSE_RTOL",
+    "CLAIM_VERDICTS",
+    "CLAIM_VERDICT_RULES",
     "verdict",
     "worst_verdict",
 ]
@@ -16,8 +18,9 @@ __all__ = [
 VERDICT_CLOSE_RTOL = 1e-2
 
 
-#: The verdicts of the record, from best to worst, then ``new`` (nothing printed to compare with).
-VERDICTS = ("match", "close", "differs", "not reproducible", "new")
+#: The verdicts of the record's entries, from best to worst, then ``input`` (a printed input, used
+#: as printed) and ``new`` (nothing printed to compare with).
+VERDICTS = ("match", "close", "differs", "not reproducible", "input", "new")
 
 
 #: The verdict rules, stated once (the book's introduction renders this text).
@@ -31,7 +34,22 @@ VERDICT_RULES = {
     "not reproducible": "the paper prints a number but not what is needed to recompute it (an "
                         "unprinted parameter), or no quantity tried gives it to its printed "
                         "precision",
+    "input": "a printed number that is an input of the reproduction (model, bands, signals, "
+             "parameters), used as printed; a test checks the transcription against the paper's "
+             "LaTeX source",
     "new": "a quantity the paper does not print (our finding); there is nothing to compare with",
+}
+
+
+#: The verdicts of the record's claims (the paper's sentences read as statements), best to worst.
+CLAIM_VERDICTS = ("PASS", "PARTLY", "FAIL")
+
+
+#: The claim verdict rules, stated once.
+CLAIM_VERDICT_RULES = {
+    "PASS": "the number that decides the claim, measured, supports the paper's words as read",
+    "PARTLY": "it supports them for part of the range, of the controllers or of the sentence only",
+    "FAIL": "it contradicts them",
 }
 
 
@@ -69,21 +87,34 @@ def verdict(paper, ours, decimals=4, *, after_the_fact=False):
     return "differs"
 
 
-def worst_verdict(verdicts):
+def worst_verdict(verdicts, order=VERDICTS):
     """The worst of several verdicts, in the order of :data:`VERDICTS` (``new`` counts as worst).
 
     Parameters
     ----------
     verdicts : iterable of str
-        Verdicts from :data:`VERDICTS`.
+        Verdicts from ``order``.
+    order : tuple of str, optional
+        The verdicts from best to worst: :data:`VERDICTS` (entries) or :data:`CLAIM_VERDICTS`.
 
     Returns
     -------
     str
 
+    Raises
+    ------
+    ValueError
+        If a verdict is not in ``order``, or there is none.
+
     Examples
     --------
     >>> worst_verdict(["match", "differs", "close"])
     'differs'
+    >>> worst_verdict(["PASS", "PARTLY"], CLAIM_VERDICTS)
+    'PARTLY'
     """
-    return max(verdicts, key=VERDICTS.index)
+    verdicts = list(verdicts)
+    unknown = [v for v in verdicts if v not in order]
+    if unknown or not verdicts:
+        raise ValueError(f"verdicts must be a non-empty list from {order}, but found {verdicts!r}")
+    return max(verdicts, key=order.index)

@@ -2,7 +2,7 @@ import json
 
 import pytest
 
-from fdsc.paper.claims import CLAIM_VERDICTS, ClaimRow, halving_record, stationary_claims, sweep_claims
+from fdsc.paper.claims import ClaimRow, halving_record, stationary_claims, sweep_claims
 from fdsc.paper.nonstationary import (
     SweepStudy,
     crossover,
@@ -13,6 +13,7 @@ from fdsc.paper.nonstationary import (
     piecewise_sweep,
 )
 from fdsc.paper.stationary import stationary_runs
+from fdsc.paper.verdict import CLAIM_VERDICTS
 
 DT = 2e-3
 

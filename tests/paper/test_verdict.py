@@ -1,6 +1,14 @@
 import pytest
 
-from fdsc.paper.verdict import verdict
+from fdsc.paper import claims
+from fdsc.paper.verdict import (
+    CLAIM_VERDICT_RULES,
+    CLAIM_VERDICTS,
+    VERDICT_RULES,
+    VERDICTS,
+    verdict,
+    worst_verdict,
+)
 
 
 @pytest.mark.parametrize(
@@ -20,3 +28,30 @@ def test_verdict(paper, ours, expected):
 )
 def test_verdict_after_the_fact_and_matrices(paper, ours, after, expected):
     assert verdict(paper, ours, after_the_fact=after) == expected
+
+
+def test_the_verdicts_and_their_rules():
+    # "input" (a printed input used as printed) sits after the comparisons; "new" stays last
+    assert VERDICTS == ("match", "close", "differs", "not reproducible", "input", "new")
+    assert tuple(VERDICT_RULES) == VERDICTS and all(VERDICT_RULES.values())
+    assert "LaTeX source" in VERDICT_RULES["input"]
+    assert CLAIM_VERDICTS == ("PASS", "PARTLY", "FAIL") and tuple(CLAIM_VERDICT_RULES) == CLAIM_VERDICTS
+    # the checklist grades with the same verdicts (the report and the schema read them from here)
+    assert claims.CLAIM_VERDICTS == CLAIM_VERDICTS
+
+
+@pytest.mark.parametrize(("verdicts", "order", "expected"), [
+    (["match", "input"], VERDICTS, "input"),
+    (["new", "differs"], VERDICTS, "new"),
+    (["PASS", "FAIL", "PARTLY"], CLAIM_VERDICTS, "FAIL"),
+    (["PASS"], CLAIM_VERDICTS, "PASS"),
+])
+def test_worst_verdict(verdicts, order, expected):
+    assert worst_verdict(verdicts, order) == expected
+
+
+@pytest.mark.parametrize(("verdicts", "order"),
+                         [([], VERDICTS), (["PASS"], VERDICTS), (["match"], CLAIM_VERDICTS)])
+def test_worst_verdict_refuses_unknown_or_no_verdicts(verdicts, order):
+    with pytest.raises(ValueError, match="verdicts must be a non-empty list from"):
+        worst_verdict(verdicts, order)

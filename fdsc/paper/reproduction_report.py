@@ -1,0 +1,306 @@
+"""The reproduction report: the whole record as table rows (the book's chapter ``report``).
+
+Pure functions of a record dict, as :func:`fdsc.paper.record.reproduction_record` returns it or as
+``python -m fdsc reproduce`` writes it: the printed numbers beside ours, every paper figure with
+its page, status and the verdict of the claims made on it, the claims checklist, the findings the
+paper does not print, and the counts per verdict. A record without claims or without a figure's
+data is rendered as such (no row is dropped, the absence is stated). The record's format is the
+JSON Schema ``fdsc/paper/data/record.schema.json`` (:func:`record_schema`).
+"""
+
+import html
+import json
+import re
+from collections import Counter
+from importlib import resources
+
+from .record import PAPER_FIGURES, figure_status
+from .report import compact
+from .verdict import CLAIM_VERDICTS, VERDICTS, worst_verdict
+
+__all__ = [
+    "NO_CLAIM",
+    "NO_CHECKLIST",
+    "record_schema",
+    "figures_named",
+    "printed_rows",
+    "figure_rows",
+    "claim_rows",
+    "finding_rows",
+    "summary",
+    "claims_sentence",
+]
+
+
+#: Verdict of a figure on which the record's claims say nothing.
+NO_CLAIM = "no claim"
+
+#: Verdict of a figure when the record has no claims checklist at all.
+NO_CHECKLIST = "no checklist"
+
+_FIGURES = re.compile(r"\bpaper Figs?\.\s*(\d+(?:\s*(?:,|and|–|-)\s*\d+)*)\b")
+
+
+def record_schema():
+    """The JSON Schema (draft 2020-12) of the record, shipped as package data.
+
+    Returns
+    -------
+    dict
+
+    Examples
+    --------
+    >>> schema = record_schema()
+    >>> schema["required"], schema["$schema"]
+    (['entries', 'figures', 'environment', 'claims'], 'https://json-schema.org/draft/2020-12/schema')
+    """
+    path = resources.files("fdsc.paper") / "data" / "record.schema.json"
+    return json.loads(path.read_text(encoding="utf-8"))
+
+
+def figures_named(source):
+    """The paper figures a source names ("paper Fig. 7", "paper Figs. 4–6", "paper Figs. 7 and 8").
+
+    Parameters
+    ----------
+    source : str
+        A claim's or an entry's ``source``.
+
+    Returns
+    -------
+    set of int
+
+    Examples
+    --------
+    >>> figures_named("Sec. IV, text on paper Fig. 7"), figures_named("paper Fig. 10")
+    ({7}, {10})
+    >>> sorted(figures_named("paper Figs. 4–6 and the Abstract")), figures_named("Abstract")
+    ([4, 5, 6], set())
+    """
+    found = set()
+    for group in _FIGURES.findall(source):
+        for part in re.split(r"\s*(?:,|and)\s*", group):
+            ends = [int(x) for x in re.split(r"\s*[–-]\s*", part)]
+            found.update(range(ends[0], ends[-1] + 1))
+    return found
+
+
+def _entries(record):
+    entries = record.get("entries") if isinstance(record, dict) else None
+    if not isinstance(entries, list):
+        raise ValueError("record must be a dict with a list 'entries' (the reproduction record), but found "
+                         f"{type(record).__name__}")
+    for e in entries:
+        if e.get("verdict") not in VERDICTS:
+            raise ValueError(f"record: entry {e.get('id')!r} has verdict {e.get('verdict')!r}, "
+                             f"expected one of {VERDICTS}")
+    return entries
+
+
+def _claims(record):
+    """The record's claims, or None when it has no checklist."""
+    claims = record.get("claims")
+    if claims is None:
+        return None
+    for c in claims:
+        if c.get("verdict") not in CLAIM_VERDICTS:
+            raise ValueError(f"record: claim {c.get('claim')!r} has verdict {c.get('verdict')!r}, "
+                             f"expected one of {CLAIM_VERDICTS}")
+    return claims
+
+
+def printed_rows(record):
+    """One row per entry whose paper value is printed: the printed value beside ours.
+
+    Parameters
+    ----------
+    record : dict
+        The reproduction record.
+
+    Returns
+    -------
+    list of dict
+        ``id, source, paper, ours, verdict, reason`` (values as compact text, see
+        :func:`fdsc.paper.report.compact`), in the record's order.
+
+    Raises
+    ------
+    ValueError
+        If the record has no list of entries or an entry's verdict is unknown.
+
+    Examples
+    --------
+    >>> rec = {"entries": [
+    ...     {"id": "K", "source": "Sec. IV", "paper": [[0.1048, 15.0897]],
+    ...      "recomputed": [[0.104946831, 15.09821467]], "verdict": "close", "note": "1e-3 off"},
+    ...     {"id": "x", "source": "ours", "paper": None, "recomputed": 1, "verdict": "new", "note": "n"}]}
+    >>> [(r["id"], r["paper"], r["ours"]) for r in printed_rows(rec)]
+    [('K', '[[0.1048, 15.09]]', '[[0.1049, 15.1]]')]
+    """
+    return [{"id": e["id"], "source": e["source"], "paper": compact(e["paper"]),
+             "ours": compact(e["recomputed"]), "verdict": e["verdict"], "reason": e["note"]}
+            for e in _entries(record) if e["paper"] is not None]
+
+
+def figure_rows(record):
+    """Every paper figure: what it shows, a link to its page, its data, status and claims' verdict.
+
+    Parameters
+    ----------
+    record : dict
+        The reproduction record.
+
+    Returns
+    -------
+    list of dict
+        One row per figure of :data:`fdsc.paper.record.PAPER_FIGURES` (paper Figs. 1–8):
+        ``figure`` ("paper Fig. N"), ``number``, ``shows``, ``chapter``, ``link`` (an HTML anchor
+        to ``<chapter>.html``, empty if no chapter redraws it), ``record_entry``, ``status`` (of
+        :func:`fdsc.paper.record.figure_status`, e.g. ``not reproduced yet``) and ``verdict``: the
+        worst verdict of the claims whose source names the figure, :data:`NO_CLAIM` if none does,
+        :data:`NO_CHECKLIST` if the record has no claims.
+
+    Examples
+    --------
+    >>> rec = {"entries": [], "figures": {"sigma_max": {"paper_figure": 3}},
+    ...        "claims": [{"claim": "c", "source": "Sec. IV, text on paper Fig. 3", "verdict": "PARTLY"}]}
+    >>> row = figure_rows(rec)[2]
+    >>> row["link"], row["status"], row["verdict"]
+    ('<a href="passive_controllers.html">passive_controllers</a>', 'redrawn from recorded data', 'PARTLY')
+    >>> figure_rows(rec)[0]["verdict"], figure_rows({"entries": [], "figures": {}})[6]["verdict"]
+    ('no claim', 'no checklist')
+    """
+    claims = _claims(record)
+    rows = []
+    for number, row in zip(PAPER_FIGURES, figure_status(record), strict=True):
+        chapter = row["chapter"]
+        link = f'<a href="{html.escape(chapter)}.html">{html.escape(chapter)}</a>' if chapter else ""
+        if claims is None:
+            verdict = NO_CHECKLIST
+        else:
+            named = [c["verdict"] for c in claims if number in figures_named(c["source"])]
+            verdict = worst_verdict(named, CLAIM_VERDICTS) if named else NO_CLAIM
+        rows.append({**row, "number": number, "link": link, "verdict": verdict})
+    return rows
+
+
+def claim_rows(record):
+    """The claims checklist, one row per claim (empty if the record has none).
+
+    Parameters
+    ----------
+    record : dict
+        The reproduction record.
+
+    Returns
+    -------
+    list of dict
+        ``claim, source, measure, value`` (compact text), ``verdict, reason``.
+
+    Raises
+    ------
+    ValueError
+        If a claim's verdict is not one of :data:`fdsc.paper.verdict.CLAIM_VERDICTS`.
+
+    Examples
+    --------
+    >>> rec = {"claims": [{"claim": "FDSC is best for rho_p <= 0.2", "source": "paper Fig. 7",
+    ...                    "measure": "crossover", "value": 0.04811, "verdict": "FAIL", "reason": "r"}]}
+    >>> [(r["value"], r["verdict"]) for r in claim_rows(rec)]
+    [('0.04811', 'FAIL')]
+    """
+    return [{"claim": c["claim"], "source": c["source"], "measure": c["measure"],
+             "value": compact(c["value"]), "verdict": c["verdict"], "reason": c["reason"]}
+            for c in _claims(record) or []]
+
+
+def finding_rows(record):
+    """The findings the paper does not print: entries with verdict ``new``.
+
+    Parameters
+    ----------
+    record : dict
+        The reproduction record.
+
+    Returns
+    -------
+    list of dict
+        ``id, source, note``, in the record's order.
+
+    Examples
+    --------
+    >>> rec = {"entries": [{"id": "x", "source": "s", "paper": None, "recomputed": 1, "verdict": "new",
+    ...                     "note": "n"}]}
+    >>> finding_rows(rec)
+    [{'id': 'x', 'source': 's', 'note': 'n'}]
+    """
+    return [{"id": e["id"], "source": e["source"], "note": e["note"]}
+            for e in _entries(record) if e["verdict"] == "new"]
+
+
+def summary(record):
+    """Counts per verdict of the entries and of the claims, and per status of the figures.
+
+    Parameters
+    ----------
+    record : dict
+        The reproduction record.
+
+    Returns
+    -------
+    dict
+        ``entries``: ``{verdict: count}`` over :data:`fdsc.paper.verdict.VERDICTS` (zeros
+        included, in that order); ``claims``: ``{verdict: count}`` over
+        :data:`fdsc.paper.verdict.CLAIM_VERDICTS`, or None if the record has no checklist;
+        ``figures``: ``{status: count}`` over the paper's figures; ``n_entries``, ``n_claims``
+        (0 without a checklist) and ``n_figures``.
+
+    Raises
+    ------
+    ValueError
+        If the record has no list of entries, or a verdict is unknown.
+
+    Examples
+    --------
+    >>> s = summary({"entries": [{"id": "a", "verdict": "match"}, {"id": "b", "verdict": "new"}],
+    ...              "figures": {}})
+    >>> s["entries"]["match"], s["entries"]["new"], s["claims"], s["n_figures"]
+    (1, 1, None, 8)
+    """
+    entries, claims = _entries(record), _claims(record)
+    by_entry = Counter(e["verdict"] for e in entries)
+    by_claim = None if claims is None else Counter(c["verdict"] for c in claims)
+    figures = figure_status(record)
+    return {"entries": {v: by_entry[v] for v in VERDICTS}, "n_entries": len(entries),
+            "claims": None if by_claim is None else {v: by_claim[v] for v in CLAIM_VERDICTS},
+            "n_claims": 0 if claims is None else len(claims),
+            "figures": dict(Counter(r["status"] for r in figures)), "n_figures": len(figures)}
+
+
+def claims_sentence(record):
+    """One Markdown sentence on the claims checklist: its counts per verdict, or that it is missing.
+
+    Parameters
+    ----------
+    record : dict
+        The reproduction record.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> claims_sentence({"entries": [], "figures": {}, "claims": [
+    ...     {"claim": "c", "source": "Abstract", "verdict": "PARTLY"}]})
+    'The checklist holds 1 claims: 0 PASS, 1 PARTLY and 0 FAIL.'
+    >>> claims_sentence({"entries": [], "figures": {}})[:45]
+    'The record holds **no claims checklist**: the'
+    """
+    counts = summary(record)
+    if counts["claims"] is None:
+        return ("The record holds **no claims checklist**: the paper's claims are not checked in this "
+                "build.")
+    c = counts["claims"]
+    return (f"The checklist holds {counts['n_claims']} claims: {c['PASS']} PASS, {c['PARTLY']} PARTLY "
+            f"and {c['FAIL']} FAIL.")
