@@ -1,11 +1,11 @@
 """Chapter 'passive_controllers', continued: the four bounds printed beside the gains of Sec. IV,
-searched for among time-domain quantities of the simulations of Sec. VI.
+searched for among time-domain quantities of the simulations of Sec. IV.
 
 The frequency-domain candidates (:func:`fdsc.paper.passive_controllers.bound_candidates`) reproduce
-only the bound printed beside K_f2. Sec. VI also computes time-domain quantities (paper Fig. 6
+only the bound printed beside K_f2. Sec. IV also computes time-domain quantities (paper Fig. 6
 plots the running L2-induced ratio ``√(∫₀ᵗ zᵀz / ∫₀ᵗ d²)``), so a printed bound may be one of
 them, read at the end of some run. This module runs every printed gain under every test signal
-of Sec. VI in one streamed batch and compares, for each gain, every quantity below with the
+of Sec. IV in one streamed batch and compares, for each gain, every quantity below with the
 bound printed beside it:
 
 * the L2-induced ratio ``√(∫₀ᵀ zᵀz / ∫₀ᵀ d²)`` from rest, and the energy ratio
@@ -77,9 +77,9 @@ RHO_P_GRID = (0.1, 0.2, 0.3, 0.4, 0.5)
 RHO_T_GRID = (0.1, 0.5)
 #: Run length (s) under the LF and HF disturbances: not printed, so the longest round horizon.
 STATIONARY_RUN = 1500.0
-#: Run length (s) under the mixed disturbances: t ∈ [0, 500] (Sec. VI, paper Fig. 7).
+#: Run length (s) under the mixed disturbances: t ∈ [0, 500] (Sec. IV, paper Fig. 7).
 MIXED_RUN = 500.0
-#: T and ρ*_p of the piecewise disturbance (Sec. VI); its run is [0, 2T + ρ_t T).
+#: T and ρ*_p of the piecewise disturbance (Sec. IV); its run is [0, 2T + ρ_t T).
 PIECEWISE_T, RHO_P_STAR = 500.0, 0.1
 #: Names of the quantities (the peak gains are named ``"peak gain of <output>"``).
 L2_RATIO, ENERGY_RATIO = "L2 ratio", "energy ratio"
@@ -89,7 +89,7 @@ STEADY_STATE = math.inf
 
 @dataclass(frozen=True)
 class SearchSignal:
-    """A test signal of Sec. VI and the length of its run.
+    """A test signal of Sec. IV and the length of its run.
 
     Parameters
     ----------
@@ -112,7 +112,7 @@ class SearchSignal:
 
 
 def search_signals() -> tuple:
-    """The test signals of Sec. VI: LF, HF, the mixed ones and the piecewise ones.
+    """The test signals of Sec. IV: LF, HF, the mixed ones and the piecewise ones.
 
     Returns
     -------
@@ -461,7 +461,7 @@ class TimeDomainBoundSearch:
         note = (f"Tried {tried['candidates_per_bound']} time-domain quantities per printed gain (L2 and "
                 f"energy ratios from rest at round horizons of {tried['round_horizons_s'][0]:g} to "
                 f"{tried['round_horizons_s'][-1]:g} s and their steady-state limits, peak gain of each "
-                f"output, under the {tried['signals']} test signals of Sec. VI), a hit being equal to "
+                f"output, under the {tried['signals']} test signals of Sec. IV), a hit being equal to "
                 f"the printed bound to its precision and picked after the fact among that many: {found}. "
                 "The first crossings are for information only: a continuous curve that sweeps through "
                 "a range crosses every value in it.")
@@ -469,7 +469,7 @@ class TimeDomainBoundSearch:
                               for c in self.crossing_rows(b.gain)} for b in self.bounds}
         return RecordPart((entry(
             "bound_time_domain",
-            "Sec. IV, the four bounds printed beside the gains; time-domain quantities of Sec. VI",
+            "Sec. IV, the four bounds printed beside the gains; time-domain quantities of Sec. IV",
             {b.gain: b.paper for b in self.bounds}, recomputed,
             worst_verdict(b.verdict for b in self.bounds), note,
             tried={**tried, "signal_runs_s": {k: float(v) for k, v in self.signals.items()},

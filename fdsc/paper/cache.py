@@ -5,7 +5,9 @@ The book build sets ``FDSC_CACHE_DIR`` to a fresh folder inside its output
 starts the kernels of the chapters (``conftest.py``); the kernels inherit it: the
 introduction's status table, built from the record, and the chapters then share one computation
 of every result.
-Without the variable (unit tests, the command line, a user's session) nothing is cached.
+Without the variable (a user's session) nothing is cached, except inside :func:`shared_results`,
+which :func:`fdsc.paper.record.reproduction_record` uses so that the command line computes each
+result once too.
 
 A cached value is keyed by the function, its arguments (plain values only: numbers, strings,
 booleans, None and tuples of them; anything else bypasses the cache) and a fingerprint of the
@@ -13,16 +15,18 @@ fdsc sources, the paper's data and the versions of the numerical packages, so an
 code never returns a stale value.
 """
 
+import contextlib
 import functools
 import hashlib
 import os
 import pickle
+import shutil
 import tempfile
 from collections.abc import Callable
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
-__all__ = ["cached", "fingerprint", "CACHE_ENV"]
+__all__ = ["cached", "fingerprint", "shared_results", "CACHE_ENV"]
 
 #: Environment variable naming the cache folder (unset: no caching).
 CACHE_ENV = "FDSC_CACHE_DIR"
@@ -113,3 +117,39 @@ def cached(fn: Callable) -> Callable:
         return value
 
     return wrapper
+
+
+@contextlib.contextmanager
+def shared_results():
+    """Within the block, :func:`cached` results are shared: in ``$FDSC_CACHE_DIR`` if it is set,
+    otherwise in a temporary folder deleted at the end of the block.
+
+    Yields
+    ------
+    str
+        The folder in use.
+
+    Examples
+    --------
+    >>> calls = []
+    >>> @cached
+    ... def twice(x):
+    ...     calls.append(x)
+    ...     return 2 * x
+    >>> with shared_results():
+    ...     twice(1), twice(1)
+    (2, 2)
+    >>> len(calls)
+    1
+    """
+    folder = os.environ.get(CACHE_ENV)
+    if folder:
+        yield folder
+        return
+    folder = tempfile.mkdtemp(prefix="fdsc-results-")
+    os.environ[CACHE_ENV] = folder
+    try:
+        yield folder
+    finally:
+        os.environ.pop(CACHE_ENV, None)
+        shutil.rmtree(folder, ignore_errors=True)

@@ -47,6 +47,7 @@ __all__ = [
     "Crossover",
     "crossover",
     "crossover_in",
+    "scaled_crossing",
     "P1Row",
     "P1Result",
     "p1_global",
@@ -450,6 +451,8 @@ class P1Row:
     ----------
     case : str
         The disturbance.
+    rho_p : float
+        ρ_p of the mixed disturbance (NaN for the LF disturbance).
     alpha_in : float
         Dominance degree α(Ω_3) of the in-band (HF) range: its share of the power.
     tail_ratio : dict
@@ -460,6 +463,7 @@ class P1Row:
     """
 
     case: str
+    rho_p: float
     alpha_in: float
     tail_ratio: dict
     passc_hf_limit: float
@@ -559,12 +563,13 @@ def p1_global(mixed: SweepRuns) -> P1Result:
     hf_band = paper_bands()["HF"]
     lf = paper_disturbance("LF")
     lf_runs = _run_family_signal(lf, float(mixed.horizon[0]), mixed.dt)
-    rows = [P1Row("LF, paper eq. (56)", lf.dominance(hf_band), lf_runs,
+    rows = [P1Row("LF, paper eq. (56)", float("nan"), lf.dominance(hf_band), lf_runs,
                   steady_state_gain(hf_loop, lf.frequencies, lf.amplitudes) ** 2)]
     for i, rho in enumerate(mixed.param):
         d = mixed_disturbance(rho)
         name = "HF, paper eq. (57)" if rho == 0 else f"mixed, rho_p = {rho:.3g}"
-        rows.append(P1Row(name, d.dominance(hf_band), {n: float(mixed.tail_ratio[n][i]) for n in SWEEP_NAMES},
+        rows.append(P1Row(name, float(rho), d.dominance(hf_band),
+                          {n: float(mixed.tail_ratio[n][i]) for n in SWEEP_NAMES},
                           steady_state_gain(hf_loop, d.frequencies, d.amplitudes) ** 2))
     cl = aircraft().closed_loop(paper_gains()["K_f3"])
     return P1Result(tuple(rows), float(band_peak(cl, hf_band).gamma),
@@ -768,6 +773,9 @@ class SweepStudy:
                   "smaller energy of PassC-EF and PassC-LF at every rho_p), bisected by full runs to "
                   "a bracket of width <= 1e-3; compared with the printed 0.2 to its one decimal.",
                   brackets={r: list(c.bracket) if c.bracket else None for r, c in self.crossover.items()},
+                  with_half_step={r: c.value for r, c in self.crossover_half.items()},
+                  passc_hf_scaled_crossing=scaled_crossing(
+                      self.mixed, paper_data("simulation")["mixed_passc_hf_scale"]["value"]),
                   grid_sign_changes={r: c.sign_changes for r, c in self.crossover.items()}),
             entry("piecewise_crossover", "Sec. IV, text on paper Fig. 8: 'with the increase of the "
                   "ratio ... EF or LF may be a better option'", None,
@@ -791,6 +799,43 @@ class SweepStudy:
 
 #: The printed threshold of paper Fig. 7's text: FDSC is best "for ρ_p ≤ 0.2".
 PAPER_CROSSOVER = 0.2
+
+
+def scaled_crossing(runs: SweepRuns, scale: float, rival: str = "PassC-LF") -> float | None:
+    """The ρ_p at which PassC-HF's energy times ``scale`` (as the paper draws it) equals ``rival``'s.
+
+    A fixed-gain loop is linear, so its output under d_h + ρ_p d_l is z_h + ρ_p z_l and its
+    energy is exactly a quadratic in ρ_p; the quadratics are fitted to the whole grid and the
+    crossing solved in closed form.
+
+    Parameters
+    ----------
+    runs : SweepRuns
+        :func:`mixed_sweep` (at least three points).
+    scale : float
+        The drawing factor of PassC-HF (1/5000 in paper Fig. 7).
+    rival : str, optional
+        A fixed-gain controller.
+
+    Returns
+    -------
+    float or None
+        The smallest crossing inside the grid's range, None if the curves do not cross there.
+
+    Raises
+    ------
+    ValueError
+        If ``runs`` is not a mixed sweep of at least three points with PassC-HF and the rival.
+    """
+    if (not isinstance(runs, SweepRuns) or runs.family != "mixed" or runs.param.size < 3
+            or not {"PassC-HF", rival} <= set(runs.energy)):
+        raise ValueError(f"runs must be a mixed sweep of at least 3 points with PassC-HF and {rival}")
+    scale = as_positive("scale", scale)
+    poly = (scale * np.polyfit(runs.param, runs.energy["PassC-HF"], 2)
+            - np.polyfit(runs.param, runs.energy[rival], 2))
+    roots = [r.real for r in np.roots(poly) if abs(r.imag) < 1e-12
+             and runs.param[0] <= r.real <= runs.param[-1]]
+    return float(min(roots)) if roots else None
 
 
 def crossover_in(runs: SweepRuns, rival: str) -> float | None:

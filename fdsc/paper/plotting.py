@@ -535,9 +535,10 @@ def plot_sweep(data, ax: plt.Axes | None = None, *, names: list | None = None, s
         f = (scale or {}).get(name, 1.0)
         ax.plot(data.param, f * data.energy[name], color=color, ls=ls, marker="o", ms=3,
                 label=None if legend is None else _label(name, f))
-    for k, (label, x) in enumerate((crossover or {}).items()):
+    line_styles = (("0.2", "--"), ("tab:olive", "-."), ("tab:cyan", ":"))
+    for (label, x), (color, ls) in zip((crossover or {}).items(), line_styles, strict=False):
         if x is not None:
-            ax.axvline(x, color="0.3", ls=(0, (4, 2 + 2 * k)), lw=1, label=label)
+            ax.axvline(x, color=color, ls=ls, lw=1.2, label=label)
     sym = r"\rho_p" if data.family == "mixed" else r"\rho_t"
     span = (r"$[0, 500]$" if data.family == "mixed" else r"$[0, 1000 + 500\rho_t]$")
     ax.set_xlabel(f"${sym}$ [-]")
@@ -551,9 +552,9 @@ def plot_sweep(data, ax: plt.Axes | None = None, *, names: list | None = None, s
     return ax
 
 
-def plot_p1(data, ax: plt.Axes | None = None, *, names: tuple = ("PassC-EF", "PassC-LF", "PassC-HF", "FDSC",
-                                                                  "FDSC (our Q)")) -> plt.Axes:
-    """(P.1): long-run √(∫zᵀz/∫d²) against the in-band dominance α(Ω_3), with γ(Ω_in, K_in).
+def plot_p1(data, ax: plt.Axes | None = None, *, names: tuple | None = None) -> plt.Axes:
+    """(P.1): long-run √(∫zᵀz/∫d²) along the ρ_p sweep, with γ(Ω_in, K_in), the printed bound and
+    the in-band controller's own ratio under the in-band disturbance.
 
     Parameters
     ----------
@@ -562,28 +563,29 @@ def plot_p1(data, ax: plt.Axes | None = None, *, names: tuple = ("PassC-EF", "Pa
     ax : matplotlib Axes, optional
         Axes to draw on (default: a new figure).
     names : tuple of str, optional
-        Controllers to draw.
+        Controllers to draw (default every controller of the result).
 
     Returns
     -------
     matplotlib Axes
     """
     ax = _axes(ax)
-    rows = [r for r in data.rows if r.alpha_in > 0]
-    alpha = np.array([r.alpha_in for r in rows])
-    for name in names:
+    rows = data.rows[1:]  # the ρ_p sweep (the first row is the LF disturbance)
+    rho = np.array([r.rho_p for r in rows])
+    for name in names or tuple(rows[0].tail_ratio):
         color, ls = CONTROLLER_STYLES.get(name, ("k", "-"))
-        ax.plot(alpha, np.sqrt([r.tail_ratio[name] for r in rows]), color=color, ls=ls, marker="o",
+        ax.plot(rho, np.sqrt([r.tail_ratio[name] for r in rows]), color=color, ls=ls, marker="o",
                 ms=3, label=_label(name))
     ax.axhline(data.gamma_in, color="k", ls="--", lw=1,
                label=rf"$\gamma(\Omega_{{in}}, K_{{in}})$ = {data.gamma_in:.4f} "
                      r"(band peak, printed $K_{f_3}$)")
     ax.axhline(data.gamma_in_printed, color="k", ls=":", lw=1,
                label=f"bound printed beside $K_{{f_3}}$: {data.gamma_in_printed:g}")
-    ax.set_xlabel(r"in-band dominance $\alpha(\Omega_3) = 1/(1 + \rho_p^2)$ [-]")
+    ax.axhline(np.sqrt(rows[0].tail_ratio["PassC-HF"]), color="gold", ls="-.", lw=1,
+               label=r"PassC-HF under the HF tones alone ($\rho_p = 0$)")
+    ax.set_xlabel(r"$\rho_p$ [-]  (in-band dominance $\alpha(\Omega_3) = 1/(1 + \rho_p^2)$)")
     ax.set_ylabel(r"$\sqrt{\int z^\top z / \int d^2}$ over $[250, 500]$ [-]")
     ax.set_yscale("log")
-    ax.invert_xaxis()
     _outside_legend(ax)
     return ax
 
@@ -606,8 +608,9 @@ def plot_p2(data, ax: plt.Axes | None = None) -> plt.Axes:
     w = np.array(data.windows)
     for name in data.worst[data.windows[0]]:
         color, ls = CONTROLLER_STYLES.get(name, ("k", "-"))
-        ax.plot(w, [data.worst[x][name] for x in data.windows], color=color, ls=ls, marker="o", ms=4,
-                label=_label(name))
+        # markers only: three window lengths, nothing is known between them
+        ax.plot(w, [data.worst[x][name] for x in data.windows], color=color, ls="none", marker="o", ms=5,
+                label=_label(name), markerfacecolor="none" if ls != "-" else color)
     ax.axhline(data.gamma_tol, color="k", ls="--", lw=1,
                label=rf"$\gamma_{{tol}}$ = {data.gamma_tol:g} (ours)")
     ax.axhline(data.gamma_out_in, color="k", ls=":", lw=1,

@@ -90,7 +90,7 @@ def html_table(rows, columns, *, formats=None, caption=None, raw=()):
     return f'<table class="table">{cap}<thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>'
 
 
-def compact(value, *, digits=4, max_items=6, max_chars=240):
+def compact(value, *, digits=4, max_items=6, max_chars=160):
     """A short text form of a record value (numbers, lists, matrices, dicts) for a table cell.
 
     Numbers get ``digits`` significant digits (through :func:`fmt`); lists print as

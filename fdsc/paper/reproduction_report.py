@@ -110,7 +110,8 @@ def _claims(record):
 
 
 def printed_rows(record):
-    """One row per entry whose paper value is printed: the printed value beside ours.
+    """One row per entry whose paper value is printed and compared (verdict not ``new``): the
+    printed value beside ours.
 
     Parameters
     ----------
@@ -139,7 +140,7 @@ def printed_rows(record):
     """
     return [{"id": e["id"], "source": e["source"], "paper": compact(e["paper"]),
              "ours": compact(e["recomputed"]), "verdict": e["verdict"], "reason": e["note"]}
-            for e in _entries(record) if e["paper"] is not None]
+            for e in _entries(record) if e["paper"] is not None and e["verdict"] != "new"]
 
 
 def figure_rows(record):

@@ -151,3 +151,18 @@ def test_sweep_study_record_part(mixed, pw):
     assert by_id["piecewise_crossover"]["recomputed"]["in_paper_range"]["PassC-LF"] is None
     assert 0.5 < by_id["piecewise_crossover"]["recomputed"]["extended"]["PassC-LF"] < 2.0
     json.dumps({"entries": list(part.entries), "figures": part.figures}, allow_nan=False)
+
+
+def test_scaled_crossing_solves_the_drawn_curves(mixed):
+    from fdsc import simulate_batch
+    from fdsc.paper.nonstationary import scaled_crossing
+
+    rho = scaled_crossing(mixed, 1 / 5000)
+    assert 0.15 < rho < 0.25
+    # at the root, full runs of the two fixed gains give PassC-HF / 5000 = PassC-LF
+    cases = sweep_cases(mixed_disturbance(rho), 500.0, DT, names=("PassC-HF", "PassC-LF"))
+    e = simulate_batch(cases).energy
+    assert e[0] / 5000 == pytest.approx(e[1], rel=1e-9)
+    assert scaled_crossing(mixed, 1e-9) is None          # scaled far down: never crosses
+    with pytest.raises(ValueError, match="runs must be a mixed sweep"):
+        scaled_crossing(piecewise_sweep(2, dt=DT), 1 / 5000)
