@@ -304,7 +304,7 @@ def sweep_claims(study: SweepStudy, *, half: bool = False) -> list:
     return rows
 
 
-def _summary_claims(stat_rows, sweep_rows, lf, hf, study):
+def _summary_claims(sweep_rows, lf, hf, study):
     """The abstract's and the conclusion's claims, decided by the rows above and the runs."""
     in_band = hf.energy["FDSC"] / hf.energy["PassC-HF"]
     by_claim = {r.source: r for r in sweep_rows}
@@ -365,7 +365,7 @@ def claims_checklist(study: SweepStudy | None = None) -> list:
     study = sweep_study() if study is None else study
     lf, hf = stationary_runs("LF"), stationary_runs("HF")
     stat, sweep = stationary_claims(lf, hf), sweep_claims(study)
-    return stat + sweep + _summary_claims(stat, sweep, lf, hf, study)
+    return stat + sweep + _summary_claims(sweep, lf, hf, study)
 
 
 def halving_record(study: SweepStudy | None = None) -> RecordPart:

@@ -216,16 +216,27 @@ class SweepRuns:
         return data
 
 
-def _run_family(family, params, dt, names=SWEEP_NAMES, windows=True):
+def _family_signal(family, p):
+    """The disturbance of one point of a family and its run length (paper Fig. 7 or Fig. 8)."""
     sim = paper_data("simulation")
+    if family == "mixed":
+        return mixed_disturbance(p), sim["mixed_horizon"]["value"]
+    T = sim["piecewise_T"]["value"]
+    return piecewise_disturbance(T, p, sim["piecewise_rho_p_star"]["value"]), 2 * T + p * T
+
+
+def _tail_ratio(r):
+    """∫zᵀz / ∫d² over the second half of a streamed run (from its coarse running integrals)."""
+    half = r.t_cum.size // 2
+    ez, ed = r.energy_cum, r.input_energy_cum
+    return float((ez[-1] - ez[half]) / (ed[-1] - ed[half]))
+
+
+def _run_family(family, params, dt, names=SWEEP_NAMES, windows=True):
     designs = fdsc_designs() if OUR_Q_NAME in names else {"paper": paper_fdsc("paper")}
     cases, horizons = [], []
     for p in params:
-        if family == "mixed":
-            d, h = mixed_disturbance(p), sim["mixed_horizon"]["value"]
-        else:
-            T = sim["piecewise_T"]["value"]
-            d, h = piecewise_disturbance(T, p, sim["piecewise_rho_p_star"]["value"]), 2 * T + p * T
+        d, h = _family_signal(family, p)
         horizons.append(h)
         cases += sweep_cases(d, h, dt, names=names, label=float(p), designs=designs)
     batch = simulate_batch(cases, cumulative_every=COARSE_STEP if windows else None)
@@ -240,13 +251,11 @@ def _run_family(family, params, dt, names=SWEEP_NAMES, windows=True):
     for i in range(m if windows else 0):
         for j, n in enumerate(names):
             r = batch[i * k + j]
-            half = r.t_cum.size // 2
-            tail[n][i] = ((r.energy_cum[-1] - r.energy_cum[half])
-                          / (r.input_energy_cum[-1] - r.input_energy_cum[half]))
+            tail[n][i] = _tail_ratio(r)
             for w in P2_WINDOWS:
                 t0, ez, ed = r.window_energies(w)
-                j = int(np.argmax(ez / ed))
-                worst[w][n][i], start[w][n][i] = ez[j] / ed[j], t0[j]
+                at = int(np.argmax(ez / ed))
+                worst[w][n][i], start[w][n][i] = ez[at] / ed[at], t0[at]
     return SweepRuns(family, np.asarray(params, float), np.asarray(horizons, float), float(dt), energy,
                      batch.input_energy.copy()[::k], switches, share_hf, tail, worst, start)
 
@@ -372,12 +381,7 @@ class Crossover:
 
 
 def _pair_energy(family, p, rival, dt, designs):
-    sim = paper_data("simulation")
-    if family == "mixed":
-        d, h = mixed_disturbance(p), sim["mixed_horizon"]["value"]
-    else:
-        T = sim["piecewise_T"]["value"]
-        d, h = piecewise_disturbance(T, p, sim["piecewise_rho_p_star"]["value"]), 2 * T + p * T
+    d, h = _family_signal(family, p)
     batch = simulate_batch(sweep_cases(d, h, dt, names=("FDSC", rival), designs=designs))
     return float(batch.energy[0]), float(batch.energy[1])
 
@@ -562,7 +566,7 @@ def p1_global(mixed: SweepRuns) -> P1Result:
     hf_loop = aircraft().closed_loop(paper_gains()["K_f3"])
     hf_band = paper_bands()["HF"]
     lf = paper_disturbance("LF")
-    lf_runs = _run_family_signal(lf, float(mixed.horizon[0]), mixed.dt)
+    lf_runs = _tail_ratios(lf, float(mixed.horizon[0]), mixed.dt)
     rows = [P1Row("LF, paper eq. (56)", float("nan"), lf.dominance(hf_band), lf_runs,
                   steady_state_gain(hf_loop, lf.frequencies, lf.amplitudes) ** 2)]
     for i, rho in enumerate(mixed.param):
@@ -576,15 +580,10 @@ def p1_global(mixed: SweepRuns) -> P1Result:
                     float(paper_data("controllers")["K_f3"]["bound"]))
 
 
-def _run_family_signal(d, horizon, dt):
+def _tail_ratios(d, horizon, dt):
     """``{controller: ∫zᵀz / ∫d² over the second half}`` of every controller under one signal."""
     batch = simulate_batch(sweep_cases(d, horizon, dt), cumulative_every=COARSE_STEP)
-    out = {}
-    for name, r in zip(SWEEP_NAMES, batch, strict=True):
-        half = r.t_cum.size // 2
-        out[name] = float((r.energy_cum[-1] - r.energy_cum[half])
-                          / (r.input_energy_cum[-1] - r.input_energy_cum[half]))
-    return out
+    return {name: _tail_ratio(r) for name, r in zip(SWEEP_NAMES, batch, strict=True)}
 
 
 @dataclass(frozen=True)

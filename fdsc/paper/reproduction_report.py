@@ -85,28 +85,26 @@ def figures_named(source):
     return found
 
 
+def _check_verdicts(items, allowed, kind, key):
+    for item in items:
+        if item.get("verdict") not in allowed:
+            raise ValueError(f"record: {kind} {item.get(key)!r} has verdict {item.get('verdict')!r}, "
+                             f"expected one of {allowed}")
+    return items
+
+
 def _entries(record):
     entries = record.get("entries") if isinstance(record, dict) else None
     if not isinstance(entries, list):
         raise ValueError("record must be a dict with a list 'entries' (the reproduction record), but found "
                          f"{type(record).__name__}")
-    for e in entries:
-        if e.get("verdict") not in VERDICTS:
-            raise ValueError(f"record: entry {e.get('id')!r} has verdict {e.get('verdict')!r}, "
-                             f"expected one of {VERDICTS}")
-    return entries
+    return _check_verdicts(entries, VERDICTS, "entry", "id")
 
 
 def _claims(record):
     """The record's claims, or None when it has no checklist."""
     claims = record.get("claims")
-    if claims is None:
-        return None
-    for c in claims:
-        if c.get("verdict") not in CLAIM_VERDICTS:
-            raise ValueError(f"record: claim {c.get('claim')!r} has verdict {c.get('verdict')!r}, "
-                             f"expected one of {CLAIM_VERDICTS}")
-    return claims
+    return None if claims is None else _check_verdicts(claims, CLAIM_VERDICTS, "claim", "claim")
 
 
 def printed_rows(record):
