@@ -41,6 +41,7 @@ from .frequency import BandPeak, band_peak, freqresp, sigma_max, steady_state_ga
 from .lmi import GKYPResult, gkyp_certify, gkyp_gamma
 from .plant import LTISystem, Plant, as_plant, as_system
 from .random_systems import random_hurwitz, random_plant, random_spd, random_system
+from .rules import PRINTED, SwitchRule
 from .signals import LocalizedDominance, Piecewise, Sampled, Sinusoids, dominance_degree, localized_dominance
 from .simulate import SimResult, envelope, simulate, time_grid
 from .stream import BatchResult, Case, StreamResult, Trace, simulate_batch, simulate_stream
@@ -67,6 +68,7 @@ __all__ = [
     # signals and simulation
     "Sinusoids", "Piecewise", "Sampled", "dominance_degree", "localized_dominance",
     "LocalizedDominance", "SimResult", "simulate", "time_grid", "envelope",
+    "SwitchRule", "PRINTED",
     "Case", "Trace", "StreamResult", "BatchResult", "simulate_stream", "simulate_batch",
     # seeded random systems
     "random_hurwitz", "random_system", "random_plant", "random_spd",

@@ -16,6 +16,7 @@ from numpy.typing import ArrayLike
 from ._validation import as_count, as_matrix, check_type
 from .bands import Band
 from .plant import LTISystem, Plant, as_plant
+from .rules import PRINTED, SwitchRule
 from .signals import Piecewise, Sinusoids
 from .simulate import SimResult, simulate
 from .stream import Case
@@ -278,7 +279,8 @@ class FDSC:
         return self.plant.closed_loop(self.gains[i])
 
     def simulate(self, d: Sinusoids | Piecewise, t: ArrayLike, *, x0: ArrayLike | None = None,
-                 law: str = "previous", sigma0: int = 0, kernel: str = "numba", **options) -> SimResult:
+                 law: str = "previous", sigma0: int = 0, rule: SwitchRule = PRINTED,
+                 kernel: str = "numba", **options) -> SimResult:
         """Simulate the switched closed loop under the law (paper eq. (31)) with this design's Q's.
 
         Parameters
@@ -293,6 +295,9 @@ class FDSC:
             How ẋ enters the law (see :data:`fdsc.simulate.LAWS`).
         sigma0 : int, optional
             Mode active before t = 0.
+        rule : SwitchRule, optional
+            Hysteresis, minimum dwell time and/or moving window applied to the law
+            (:class:`~fdsc.rules.SwitchRule`; default the printed argmax).
         kernel : {"numba", "numpy"}, optional
             Compiled kernel or its NumPy reference.
         **options
@@ -308,10 +313,12 @@ class FDSC:
             As :func:`~fdsc.simulate.simulate` raises them.
         """
         return simulate(list(self.modes), d, t, x0=x0, law_bands=list(self.bands),
-                        law_Q=list(self.Q), law=law, sigma0=sigma0, kernel=kernel, **options)
+                        law_Q=list(self.Q), law=law, sigma0=sigma0, rule=rule, kernel=kernel,
+                        **options)
 
     def case(self, d, horizon: float, dt: float, *, x0: ArrayLike | None = None,
-             law: str = "previous", sigma0: int = 0, label: object = None) -> Case:
+             law: str = "previous", sigma0: int = 0, rule: SwitchRule = PRINTED,
+             label: object = None) -> Case:
         """The switched closed loop under this design's law as one :class:`~fdsc.stream.Case`
         of a batch (:func:`~fdsc.stream.simulate_batch`) or a streamed run.
 
@@ -327,6 +334,8 @@ class FDSC:
             How ẋ enters the law (see :data:`fdsc.simulate.LAWS`).
         sigma0 : int, optional
             Mode active before t = 0.
+        rule : SwitchRule, optional
+            Hysteresis, minimum dwell time and/or moving window (default the printed argmax).
         label : object, optional
             Kept with the case for the caller.
 
@@ -345,4 +354,4 @@ class FDSC:
         array([0.04, 0.89])
         """
         return Case(list(self.modes), d, horizon, dt, x0=x0, law_bands=list(self.bands),
-                    law_Q=list(self.Q), law=law, sigma0=sigma0, label=label)
+                    law_Q=list(self.Q), law=law, sigma0=sigma0, rule=rule, label=label)

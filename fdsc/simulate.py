@@ -24,9 +24,10 @@ from scipy.linalg import expm
 from ._validation import as_choice, as_count, as_matrix, as_positive, as_vector, check_type
 from .bands import Band
 from .energy import check_weight
-from .exceptions import MemoryLimitError, UnstableError, UnstableRunWarning
+from .exceptions import DimensionError, MemoryLimitError, UnstableError, UnstableRunWarning
 from .frequency import check_no_pole_at
 from .plant import LTISystem, as_system
+from .rules import PRINTED, SwitchRule, apply_rule, rule_state
 from .signals import Piecewise, Sinusoids
 
 __all__ = ["SimResult", "particular", "simulate", "time_grid", "envelope", "estimate_memory",
@@ -259,40 +260,115 @@ def _law_matrices(psis, Qs):
     return np.array([np.kron(p, Q) for p, Q in zip(psis, Qs, strict=True)])
 
 
+def _law_weights(n, n_modes, law_bands, law_Q, law_weights, where=""):
+    """The law's quadratic forms, (I, 2n, 2n) on [ẋ; x] or (I, 3n, 3n) on [ẍ; ẋ; x].
+
+    Either ``law_bands`` and ``law_Q`` (paper eq. (31): W_i = Re Ψ_i ⊗ Q_i) or ``law_weights``
+    (any symmetric W_i; those of size 2n are placed on the [ẋ; x] block when another is 3n)."""
+    if n_modes == 1:
+        if law_weights is not None or law_bands is not None or law_Q is not None:
+            raise ValueError(f"{where}a single mode has no switching law: leave law_bands, law_Q "
+                             "and law_weights unset")
+        return np.zeros((1, 2 * n, 2 * n))
+    if law_weights is not None:
+        if law_bands is not None or law_Q is not None:
+            raise ValueError(f"{where}give either law_weights or law_bands with law_Q, not both")
+        if not isinstance(law_weights, list | tuple) or len(law_weights) != n_modes:
+            raise ValueError(f"{where}law_weights must be a list with one matrix per mode "
+                             f"({n_modes} modes), found {type(law_weights).__name__}")
+        Ws = []
+        for i, W in enumerate(law_weights):
+            W = np.asarray(as_matrix(f"{where}law_weights[{i}]", W, square=True))
+            if W.shape[0] not in (2 * n, 3 * n):
+                raise DimensionError(f"{where}law_weights[{i}] must be ({2 * n}, {2 * n}) on [ẋ; x] "
+                                     f"or ({3 * n}, {3 * n}) on [ẍ; ẋ; x], but found {W.shape}")
+            if not np.allclose(W, W.T, rtol=1e-12, atol=1e-12 * max(1.0, float(np.abs(W).max()))):
+                raise ValueError(f"{where}law_weights[{i}] must be symmetric")
+            Ws.append(W)
+        q = max(W.shape[0] for W in Ws)
+        out = np.zeros((n_modes, q, q))
+        for i, W in enumerate(Ws):
+            out[i, q - W.shape[0]:, q - W.shape[0]:] = W
+        return out
+    for name, value in (("law_bands", law_bands), ("law_Q", law_Q)):
+        if not isinstance(value, list | tuple) or len(value) != n_modes:
+            raise ValueError(f"{where}{name} must be a list with one entry per mode ({n_modes} "
+                             f"modes), found {type(value).__name__}"
+                             + (f" of length {len(value)}" if isinstance(value, list | tuple) else ""))
+    if not all(isinstance(b, Band) for b in law_bands):
+        raise TypeError(f"{where}law_bands must be a list of fdsc.Band")
+    Qs = []
+    for i, Q in enumerate(law_Q):
+        try:
+            Qs.append(check_weight(Q, n))
+        except (ValueError, TypeError) as exc:
+            raise type(exc)(f"{where}law_Q[{i}]: {exc}") from None
+    return _law_matrices([b.psi.real for b in law_bands], Qs)
+
+
+def _derivative_samples(d, t):
+    """ḋ on the grid (exact for sums of sinusoids; zero where a Piecewise is off)."""
+    if isinstance(d, Sinusoids):
+        return d.derivative(t)
+    out = np.zeros_like(t)
+    for k, part in enumerate(d.parts):
+        sel = (t >= d.breaks[k]) & (t < d.breaks[k + 1])
+        out[sel] = part.derivative(t[sel])
+    return out
+
+
 @njit(cache=True)
-def _kernel_numba(Phi, left, right, A, B, d, W, x0, sigma0, candidate):
+def _derivatives(A, B, m, x, dk, ddk, v, n, q):
+    """v = [ẍ; ẋ; x] (q = 3n) or [ẋ; x] (q = 2n) of mode m at state x, d = dk, ḋ = ddk."""
+    o = q - 2 * n
+    for r in range(n):
+        acc = B[r] * dk
+        for c in range(n):
+            acc += A[m, r, c] * x[c]
+        v[o + r] = acc
+        v[o + n + r] = x[r]
+    if o > 0:
+        for r in range(n):
+            acc = B[r] * ddk
+            for c in range(n):
+                acc += A[m, r, c] * v[n + c]
+            v[r] = acc
+
+
+@njit(cache=True)
+def _scores(A, B, W, x, dk, ddk, prev, candidate, v, sc):
+    """The law's score of every mode at one sample (measured or candidate derivatives)."""
+    n_modes, n, q = A.shape[0], A.shape[1], W.shape[1]
+    for i in range(n_modes):
+        if candidate or i == 0:
+            # the measured derivatives (default law) are the same for every candidate
+            _derivatives(A, B, i if candidate else prev, x, dk, ddk, v, n, q)
+        score = 0.0
+        for r in range(q):
+            row = 0.0
+            for c in range(q):
+                row += W[i, r, c] * v[c]
+            score += v[r] * row
+        sc[i] = score
+
+
+@njit(cache=True)
+def _kernel_numba(Phi, left, right, A, B, d, dd, W, x0, sigma0, candidate, rparams, ring, ring_sum,
+                  istate):
     n_modes, n = A.shape[0], A.shape[1]
     N = d.shape[0]
     x = np.empty((N, n))
     sigma = np.empty(N, np.int64)
     x[0] = x0
     prev = sigma0
-    v = np.empty(2 * n)
+    v = np.empty(W.shape[1])
+    sc = np.empty(n_modes)
+    eff = np.empty(n_modes)
     for k in range(N):
         xk = x[k]
         if n_modes > 1:
-            best = -np.inf
-            choice = prev
-            for i in range(n_modes):
-                if candidate or i == 0:
-                    # the measured ẋ (default law) is the same for every candidate: build v once
-                    m = i if candidate else prev
-                    for r in range(n):
-                        acc = B[r] * d[k]
-                        for c in range(n):
-                            acc += A[m, r, c] * xk[c]
-                        v[r] = acc
-                        v[n + r] = xk[r]
-                score = 0.0
-                for r in range(2 * n):
-                    row = 0.0
-                    for c in range(2 * n):
-                        row += W[i, r, c] * v[c]
-                    score += v[r] * row
-                if score > best:
-                    best = score
-                    choice = i
-            prev = choice
+            _scores(A, B, W, xk, d[k], dd[k], prev, candidate, v, sc)
+            prev = apply_rule(sc, prev, k, rparams, ring, ring_sum, istate, eff)
         sigma[k] = prev
         if k + 1 < N:
             for r in range(n):
@@ -303,23 +379,29 @@ def _kernel_numba(Phi, left, right, A, B, d, W, x0, sigma0, candidate):
     return x, sigma
 
 
-def _kernel_numpy(Phi, left, right, A, B, d, W, x0, sigma0, candidate):
-    """Reference implementation of :func:`_kernel_numba` (same arithmetic, plain Python loop)."""
+def _kernel_numpy(Phi, left, right, A, B, d, dd, W, x0, sigma0, candidate, rparams, ring, ring_sum,
+                  istate):
+    """Reference implementation of :func:`_kernel_numba` (NumPy arithmetic, plain Python loop;
+    the rule is the same function run by the interpreter)."""
     n_modes, n = A.shape[0], A.shape[1]
+    second = W.shape[1] == 3 * n
     N = d.shape[0]
     x = np.empty((N, n))
     sigma = np.empty(N, np.int64)
     x[0] = x0
     prev = sigma0
+    eff = np.empty(n_modes)
     for k in range(N):
         xk = x[k]
         if n_modes > 1:
-            if candidate:
-                v = np.concatenate([A @ xk + B * d[k], np.broadcast_to(xk, (n_modes, n))], axis=1)
-            else:
-                v = np.broadcast_to(np.concatenate([A[prev] @ xk + B * d[k], xk]), (n_modes, 2 * n))
+            Am = A if candidate else np.broadcast_to(A[prev], A.shape)
+            xd = Am @ xk + B * d[k]
+            parts = [xd, np.broadcast_to(xk, (n_modes, n))]
+            if second:
+                parts.insert(0, np.einsum("irc,ic->ir", Am, xd) + B * dd[k])
+            v = np.concatenate(parts, axis=1)
             scores = np.einsum("ir,irc,ic->i", v, W, v)
-            prev = int(np.argmax(scores))
+            prev = apply_rule.py_func(scores, prev, k, rparams, ring, ring_sum, istate, eff)
         sigma[k] = prev
         if k + 1 < N:
             x[k + 1] = right[prev, k] + Phi[prev] @ (xk - left[prev, k])
@@ -445,7 +527,8 @@ def _shared_input(modes, where=""):
 
 def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
              x0: ArrayLike | None = None, law_bands: list | None = None, law_Q: list | None = None,
-             law: str = "previous", sigma0: int = 0, kernel: str = "numba",
+             law: str = "previous", sigma0: int = 0, rule: SwitchRule = PRINTED,
+             law_weights: list | None = None, kernel: str = "numba",
              max_memory: float = DEFAULT_MAX_MEMORY) -> SimResult:
     """Simulate an LTI (one mode) or switched (several modes) closed loop exactly on a grid.
 
@@ -468,6 +551,13 @@ def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
         How ẋ enters the law (see :data:`LAWS`).
     sigma0 : int, optional
         Mode assumed active before t = 0 (used for ẋ at t = 0).
+    rule : SwitchRule, optional
+        Hysteresis, minimum dwell time and/or moving window applied to the law
+        (:class:`~fdsc.rules.SwitchRule`; default the printed argmax).
+    law_weights : list of array_like, optional
+        Instead of ``law_bands`` and ``law_Q``: one symmetric weight W_i per mode, (2n, 2n) on
+        ``[ẋ; x]`` or (3n, 3n) on ``[ẍ; ẋ; x]``; the law picks ``argmax_i vᵀ W_i v``. The measured
+        ẍ is ``A_σ(t⁻) ẋ + B ḋ`` (each candidate's own with ``law="candidate"``), ḋ exact.
     kernel : {"numba", "numpy"}, optional
         Compiled kernel or its plain NumPy reference.
     max_memory : float, optional
@@ -482,10 +572,13 @@ def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
     ------
     ValueError
         On mismatched mode/law counts, modes that do not share B and D, a disturbance with more
-        than one input, a non-uniform grid, breaks of a Piecewise off the grid, non-PD Q, an
+        than one input, a non-uniform grid, breaks of a Piecewise off the grid, non-PD Q, law
+        weights that are not symmetric or given together with ``law_bands``/``law_Q``, an
         unknown law or kernel, or ``sigma0`` not a mode index.
     TypeError
-        If ``modes``, ``d`` or ``law_bands`` are not of the accepted types.
+        If ``modes``, ``d``, ``law_bands`` or ``rule`` are not of the accepted types.
+    DimensionError
+        If a law weight is neither (2n, 2n) nor (3n, 3n).
     SingularFrequencyError
         If a disturbance tone sits at an eigenvalue of a mode (resonance).
     MemoryLimitError
@@ -502,7 +595,7 @@ def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
     -----
     Several modes form the switched closed loop of paper eq. (32) (with ``C + D2 K_i``), switched by
     the law of paper eq. (31), ``σ = argmax_i [ẋ; x]ᵀ (Re Ψ_i ⊗ Q_i) [ẋ; x]``, evaluated at every
-    grid point; the new mode holds until the next one.
+    grid point (modified by ``rule``); the new mode holds until the next one.
 
     Examples
     --------
@@ -520,15 +613,8 @@ def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
     as_choice("kernel", kernel, KERNELS)
     max_memory = as_positive("max_memory", max_memory)
     n_modes = len(modes)
-    if n_modes > 1:
-        if law_bands is None or law_Q is None or len(law_bands) != n_modes or len(law_Q) != n_modes:
-            raise ValueError(f"law_bands and law_Q must each list one entry per mode ({n_modes} modes)")
-        if not all(isinstance(b, Band) for b in law_bands):
-            raise TypeError("law_bands must be a list of fdsc.Band")
-        Qs = [check_weight(Q, n) for Q in law_Q]
-        W = _law_matrices([b.psi.real for b in law_bands], Qs)
-    else:
-        W = np.zeros((1, 2 * n, 2 * n))
+    W = _law_weights(n, n_modes, law_bands, law_Q, law_weights)
+    check_type("rule", rule, SwitchRule)
     sigma0 = as_count("sigma0", sigma0, 0)
     if sigma0 >= n_modes:
         raise ValueError(f"sigma0 must be a mode index in [0, {n_modes}), found {sigma0}")
@@ -545,10 +631,12 @@ def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
     Phi = np.array([expm(m.A * dt) for m in modes])
     A = np.array([m.A for m in modes])
     left, right = _particular_steps(list(A), B, d, t)
+    ddvals = _derivative_samples(d, t) if W.shape[1] == 3 * n else np.zeros_like(dvals)
+    rparams, ring, ring_sum, istate = rule_state(rule, dt, n_modes)
     run = _kernel_numba if kernel == "numba" else _kernel_numpy
     with np.errstate(over="ignore", invalid="ignore"):
-        x, sigma = run(Phi, left, right, A, np.ascontiguousarray(B[:, 0]), dvals, W, x0,
-                       int(sigma0), law == "candidate")
+        x, sigma = run(Phi, left, right, A, np.ascontiguousarray(B[:, 0]), dvals, ddvals, W, x0,
+                       int(sigma0), law == "candidate", rparams, ring, ring_sum, istate)
     finite = np.isfinite(x).all(axis=1)
     if not finite.all():
         k = int(np.argmin(finite))

@@ -46,12 +46,11 @@ from numpy.typing import ArrayLike
 from scipy.linalg import expm
 
 from ._validation import as_choice, as_count, as_positive, as_vector, check_type
-from .bands import Band
-from .energy import check_weight
 from .exceptions import UnstableError, UnstableRunWarning
 from .frequency import check_no_pole_at
 from .signals import Piecewise, Sampled, Sinusoids
-from .simulate import LAWS, _as_modes, _law_matrices, _shared_input
+from .rules import PRINTED, SwitchRule, apply_rule, rule_state
+from .simulate import LAWS, _as_modes, _derivatives, _law_weights, _shared_input
 
 __all__ = ["Case", "Trace", "StreamResult", "BatchResult", "simulate_stream", "simulate_batch",
            "PHASOR_BLOCK", "STREAM_KERNELS"]
@@ -73,7 +72,7 @@ _LAW_CODE = {"previous": 0, "candidate": 1}
 
 def _case_loop(N, dt, nm, Phi, A, B, C, D, W, Wt, law, sigma0, x0,
                kind, seg_start, seg_nt, omega, amp, phase, Xre, Xim, Rre, Rim,
-               u, G0, G1, cum_every, trace_every, dwell_edges,
+               u, G0, G1, cum_every, trace_every, dwell_edges, rparams, ring, ring_sum, istate,
                sums, share_steps, dwell_counts, cum, tr_lo, tr_hi, tr_share, x_out, info):
     """One run; see the module docstring. Writes every result into the output arguments.
 
@@ -84,13 +83,20 @@ def _case_loop(N, dt, nm, Phi, A, B, C, D, W, Wt, law, sigma0, x0,
     p = C.shape[1]
     T = omega.shape[1]
     K = Rre.shape[1]
+    q = W.shape[1]
     nt2 = Wt.shape[0]
     prod = np.empty(nt2)
     sa = np.empty(Wt.shape[1])
     sb = np.empty(Wt.shape[1])
+    sc = np.empty(Wt.shape[1])
+    eff = np.empty(Wt.shape[1])
+    plain = rparams[0] == 0.0 and rparams[2] == 0.0 and rparams[3] <= 1.0
+    scv = sc[:nm]           # the case's own modes (padded modes of a batch are never chosen)
+    effv = eff[:nm]
+    rsv = ring_sum[:nm]
     x = x0.copy()
     xn = np.empty(n)
-    v = np.empty(2 * n)
+    v = np.empty(q)
     left = np.empty(n)
     right = np.empty(n)
     bre = np.empty(T)       # phasor at the first point kb of the current block
@@ -155,19 +161,23 @@ def _case_loop(N, dt, nm, Phi, A, B, C, D, W, Wt, law, sigma0, x0,
             dk = u[k]
         # the switching law at point k
         if nm > 1:
-            best = -np.inf
-            choice = prev
+            if q > 2 * n:
+                # ḋ at point k, for the measured ẍ = A_σ ẋ + B ḋ of a second-order law
+                ddk = 0.0
+                if kind == 0:
+                    for j in range(seg_nt[s]):
+                        ddk += amp[s, j] * omega[s, j] * pre[j]
+                elif kind == 2:
+                    ddk = (u[k + 1] - u[k]) / dt if k + 1 < N else (u[k] - u[k - 1]) / dt
+            else:
+                ddk = 0.0
             if law == 0:
-                # the measured ẋ is the same for every candidate: score_i = Σ_{r≤c} Wt_i,rc v_r v_c
-                for r in range(n):
-                    acc = B[r] * dk
-                    for c in range(n):
-                        acc += A[prev, r, c] * x[c]
-                    v[r] = acc
-                    v[n + r] = x[r]
+                # the measured derivatives are the same for every candidate:
+                # score_i = Σ_{r≤c} Wt_i,rc v_r v_c
+                _derivatives(A, B, prev, x, dk, ddk, v, n, q)
                 idx = 0
-                for r in range(2 * n):
-                    for c in range(r, 2 * n):
+                for r in range(q):
+                    for c in range(r, q):
                         prod[idx] = v[r] * v[c]
                         idx += 1
                 for i in range(nm):
@@ -183,27 +193,26 @@ def _case_loop(N, dt, nm, Phi, A, B, C, D, W, Wt, law, sigma0, x0,
                     for i in range(nm):
                         sa[i] += Wt[nt2 - 1, i] * prod[nt2 - 1]
                 for i in range(nm):
-                    score = sa[i] + sb[i]
-                    if score > best:
-                        best = score
-                        choice = i
+                    sc[i] = sa[i] + sb[i]
             else:
                 for i in range(nm):
-                    for r in range(n):
-                        acc = B[r] * dk
-                        for c in range(n):
-                            acc += A[i, r, c] * x[c]
-                        v[r] = acc
-                        v[n + r] = x[r]
+                    _derivatives(A, B, i, x, dk, ddk, v, n, q)
                     score = 0.0
-                    for r in range(2 * n):
+                    for r in range(q):
                         row = 0.0
-                        for c in range(2 * n):
+                        for c in range(q):
                             row += W[i, r, c] * v[c]
                         score += v[r] * row
-                    if score > best:
-                        best = score
+                    sc[i] = score
+            if plain:
+                best = -np.inf
+                choice = prev
+                for i in range(nm):
+                    if sc[i] > best:
+                        best = sc[i]
                         choice = i
+            else:
+                choice = apply_rule(scv, prev, k, rparams, ring, rsv, istate, effv)
             if choice != prev:
                 if k > 0:
                     switches += 1
@@ -374,12 +383,14 @@ _case_numba = njit(cache=True)(_case_loop)
 def _batch_numba(N, dt, nm, Phi, A, B, C, D, W, Wt, law, sigma0, x0,
                  kind, seg_start, seg_nt, omega, amp, phase, Xre, Xim, Rre, Rim,
                  u_all, u_off, G0, G1, cum_every, trace_every, dwell_edges, cum_off, tr_off,
+                 rparams, ring, ring_off, ring_sum, istate,
                  sums, share_steps, dwell_counts, cum, tr_lo, tr_hi, tr_share, x_out, info):
     for c in prange(N.shape[0]):
         _case_numba(N[c], dt[c], nm[c], Phi[c], A[c], B[c], C[c], D[c], W[c], Wt[c], law[c], sigma0[c],
                     x0[c], kind[c], seg_start[c], seg_nt[c], omega[c], amp[c], phase[c], Xre[c],
                     Xim[c], Rre[c], Rim[c], u_all[u_off[c]:u_off[c + 1]], G0[c], G1[c],
-                    cum_every[c], trace_every[c], dwell_edges[c],
+                    cum_every[c], trace_every[c], dwell_edges[c], rparams[c],
+                    ring[ring_off[c]:ring_off[c + 1]], ring_sum[c], istate[c],
                     sums[c], share_steps[c], dwell_counts[c], cum[cum_off[c]:cum_off[c + 1]],
                     tr_lo[tr_off[c]:tr_off[c + 1]], tr_hi[tr_off[c]:tr_off[c + 1]],
                     tr_share[tr_off[c]:tr_off[c + 1]], x_out[c], info[c])
@@ -415,6 +426,11 @@ class Case:
         How ẋ enters the law (:data:`fdsc.simulate.LAWS`).
     sigma0 : int, optional
         Mode assumed active before t = 0.
+    rule : SwitchRule, optional
+        Hysteresis, minimum dwell time and/or moving window (default the printed argmax).
+    law_weights : list of array_like, optional
+        Instead of ``law_bands`` and ``law_Q``: one symmetric W_i per mode on ``[ẋ; x]`` (2n) or
+        ``[ẍ; ẋ; x]`` (3n); see :func:`fdsc.simulate.simulate`.
     label : object, optional
         Anything that identifies the case for the caller (kept, not used).
     """
@@ -428,6 +444,8 @@ class Case:
     law_Q: list | None = None
     law: str = "previous"
     sigma0: int = 0
+    rule: SwitchRule = PRINTED
+    law_weights: list | None = None
     label: object = field(default=None, compare=False)
 
 
@@ -682,23 +700,8 @@ def _prepare(case, where, cumulative_every, trace_every, dwell_edges):
     B, D = B[:, 0].copy(), D[:, 0].copy()
     nm, p = len(modes), modes[0].n_outputs
     law = as_choice(f"{where}law", case.law, LAWS)
-    if nm > 1:
-        for name in ("law_bands", "law_Q"):
-            value = getattr(case, name)
-            if not isinstance(value, list | tuple) or len(value) != nm:
-                raise ValueError(f"{where}{name} must be a list with one entry per mode ({nm} modes), "
-                                 f"found {type(value).__name__}")
-        if not all(isinstance(b, Band) for b in case.law_bands):
-            raise TypeError(f"{where}law_bands must be a list of fdsc.Band")
-        Qs = []
-        for i, Q in enumerate(case.law_Q):
-            try:
-                Qs.append(check_weight(Q, n))
-            except (ValueError, TypeError) as exc:
-                raise type(exc)(f"{where}law_Q[{i}]: {exc}") from None
-        W = _law_matrices([b.psi.real for b in case.law_bands], Qs)
-    else:
-        W = np.zeros((1, 2 * n, 2 * n))
+    W = _law_weights(n, nm, case.law_bands, case.law_Q, case.law_weights, where)
+    check_type(f"{where}rule", case.rule, SwitchRule)
     sigma0 = as_count(f"{where}sigma0", case.sigma0, 0)
     if sigma0 >= nm:
         raise ValueError(f"{where}sigma0 must be a mode index in [0, {nm}), found {sigma0}")
@@ -714,8 +717,10 @@ def _prepare(case, where, cumulative_every, trace_every, dwell_edges):
     Phi = np.array([expm(a * dt) for a in A])
     check_type(f"{where}d", case.d, Sinusoids | Piecewise | Sampled,
                "an fdsc.signals.Sinusoids, Piecewise or Sampled")
+    rparams, ring, _, _ = rule_state(case.rule, dt, nm)
     out = dict(N=N, dt=dt, nm=nm, n=n, p=p, Phi=Phi, A=A, B=B, C=C, D=D, W=W, law=_LAW_CODE[law],
-               sigma0=sigma0, x0=x0, horizon=steps * dt, modes=modes)
+               sigma0=sigma0, x0=x0, horizon=steps * dt, modes=modes, rparams=rparams,
+               ring_len=ring.shape[0])
     if isinstance(case.d, Sampled):
         if abs(case.d.dt - dt) > 1e-12 * dt:
             raise ValueError(f"{where}d is sampled every {case.d.dt:g} s but the run steps by "
@@ -804,13 +809,15 @@ def _stack(preps):
     S = max(len(q["segments"]) for q in preps)
     T = max([1] + [s.frequencies.size for q in preps for s in q["segments"] if s is not None])
     nb = max(q["dwell_edges"].size for q in preps)
+    # the law's vector: [ẋ; x] (f = 2), or [ẍ; ẋ; x] (f = 3) if any case has a second-order law
+    f = max(q["W"].shape[1] // q["n"] for q in preps)
     K = PHASOR_BLOCK
     st = dict(N=np.array([q["N"] for q in preps], dtype=np.int64),
               dt=np.array([q["dt"] for q in preps]),
               nm=np.array([q["nm"] for q in preps], dtype=np.int64),
               Phi=np.zeros((C, nm, n, n)), A=np.zeros((C, nm, n, n)), B=np.zeros((C, n)),
-              C=np.zeros((C, nm, p, n)), D=np.zeros((C, p)), W=np.zeros((C, nm, 2 * n, 2 * n)),
-              Wt=np.zeros((C, n * (2 * n + 1), nm)),
+              C=np.zeros((C, nm, p, n)), D=np.zeros((C, p)), W=np.zeros((C, nm, f * n, f * n)),
+              Wt=np.zeros((C, f * n * (f * n + 1) // 2, nm)),
               law=np.array([q["law"] for q in preps], dtype=np.int64),
               sigma0=np.array([q["sigma0"] for q in preps], dtype=np.int64),
               x0=np.zeros((C, n)), kind=np.array([q["kind"] for q in preps], dtype=np.int64),
@@ -821,7 +828,8 @@ def _stack(preps):
               G0=np.zeros((C, nm, n)), G1=np.zeros((C, nm, n)),
               cum_every=np.array([q["cum_every"] for q in preps], dtype=np.int64),
               trace_every=np.array([q["trace_every"] for q in preps], dtype=np.int64),
-              dwell_edges=np.full((C, nb), np.iinfo(np.int64).max, dtype=np.int64))
+              dwell_edges=np.full((C, nb), np.iinfo(np.int64).max, dtype=np.int64),
+              rparams=np.zeros((C, 4)))
     u_off, cum_off, tr_off = [0], [0], [0]
     for c, q in enumerate(preps):
         qn, qm, qp = q["n"], q["nm"], q["p"]
@@ -834,15 +842,19 @@ def _stack(preps):
         st["C"][c, :qm, :qp, :qn] = q["C"]
         st["D"][c, :qp] = q["D"]
         W = q["W"]
+        g = W.shape[1] // qn
         for i in range(W.shape[0]):
-            # the law's form is [ẋ; x]ᵀ W [ẋ; x]; place its blocks at the padded positions
-            st["W"][c, i, :qn, :qn] = W[i, :qn, :qn]
-            st["W"][c, i, :qn, n:n + qn] = W[i, :qn, qn:]
-            st["W"][c, i, n:n + qn, :qn] = W[i, qn:, :qn]
-            st["W"][c, i, n:n + qn, n:n + qn] = W[i, qn:, qn:]
+            # the law's form is vᵀ W v with v = [ẍ; ẋ; x] or [ẋ; x]: place each n×n block at the
+            # padded position (a first-order law in a second-order batch leaves the ẍ block zero)
+            for a in range(g):
+                for b in range(g):
+                    st["W"][c, i, (a + f - g) * n:(a + f - g) * n + qn,
+                            (b + f - g) * n:(b + f - g) * n + qn] = W[i, a * qn:(a + 1) * qn,
+                                                                     b * qn:(b + 1) * qn]
         for i in range(W.shape[0]):
             Wp = st["W"][c, i]
-            st["Wt"][c, :, i] = (Wp + Wp.T - np.diag(np.diag(Wp)))[np.triu_indices(2 * n)]
+            st["Wt"][c, :, i] = (Wp + Wp.T - np.diag(np.diag(Wp)))[np.triu_indices(f * n)]
+        st["rparams"][c] = q["rparams"]
         st["x0"][c, :qn] = q["x0"]
         st["G0"][c, :qm, :qn] = q["G0"]
         st["G1"][c, :qm, :qn] = q["G1"]
@@ -865,6 +877,7 @@ def _stack(preps):
         tr_off.append(tr_off[-1] + (-(-q["N"] // te) if te else 0))
     st["u_all"] = np.concatenate([q["u"] for q in preps]) if u_off[-1] else np.zeros(1)
     st["u_off"], st["cum_off"], st["tr_off"] = (np.array(o, dtype=np.int64) for o in (u_off, cum_off, tr_off))
+    st["ring_off"] = np.concatenate([[0], np.cumsum([q["ring_len"] for q in preps])]).astype(np.int64)
     return st, dict(n=n, p=p, nm=nm, nb=nb)
 
 
@@ -886,13 +899,17 @@ def _run(preps, kernel, threads):
     info = np.zeros((Cn, 2), dtype=np.int64)
     outputs = (sums, share_steps, dwell_counts, cum, tr_lo, tr_hi, tr_share, x_out, info)
     args = [st[k] for k in _INPUTS]
+    ring = np.zeros((int(st["ring_off"][-1]), nm))
+    ring_sum = np.zeros((Cn, nm))
+    istate = np.zeros((Cn, 3), dtype=np.int64)
     if kernel == "numba" and Cn > 1:
         saved = numba.get_num_threads()
         numba.set_num_threads(threads)
         try:
             with np.errstate(over="ignore", invalid="ignore"):
                 _batch_numba(*args, st["u_all"], st["u_off"], st["G0"], st["G1"], st["cum_every"],
-                             st["trace_every"], st["dwell_edges"], st["cum_off"], st["tr_off"], *outputs)
+                             st["trace_every"], st["dwell_edges"], st["cum_off"], st["tr_off"],
+                             st["rparams"], ring, st["ring_off"], ring_sum, istate, *outputs)
         finally:
             numba.set_num_threads(saved)
     else:
@@ -903,7 +920,9 @@ def _run(preps, kernel, threads):
             ts = slice(st["tr_off"][c], st["tr_off"][c + 1])
             with np.errstate(over="ignore", invalid="ignore"):
                 loop(*[a[c] for a in args], u, st["G0"][c], st["G1"][c], st["cum_every"][c],
-                     st["trace_every"][c], st["dwell_edges"][c], sums[c], share_steps[c],
+                     st["trace_every"][c], st["dwell_edges"][c], st["rparams"][c],
+                     ring[st["ring_off"][c]:st["ring_off"][c + 1]], ring_sum[c], istate[c],
+                     sums[c], share_steps[c],
                      dwell_counts[c], cum[cs], tr_lo[ts], tr_hi[ts], tr_share[ts], x_out[c], info[c])
     results = []
     for c, pr in enumerate(preps):
@@ -960,6 +979,7 @@ def _warn_unstable_modes(pr, res, where, stacklevel):
 def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, dt: float, *,
                     x0: ArrayLike | None = None, law_bands: list | None = None,
                     law_Q: list | None = None, law: str = "previous", sigma0: int = 0,
+                    rule: SwitchRule = PRINTED, law_weights: list | None = None,
                     cumulative_every: float | None = None, trace_every: float | None = None,
                     dwell_edges: ArrayLike | None = None, kernel: str = "numba") -> StreamResult:
     """Simulate one LTI or switched loop on ``0, dt, …, horizon`` and return its reductions.
@@ -984,6 +1004,12 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
         How ẋ enters the law (:data:`fdsc.simulate.LAWS`).
     sigma0 : int, optional
         Mode assumed active before t = 0.
+    rule : SwitchRule, optional
+        Hysteresis, minimum dwell time and/or moving window (:class:`~fdsc.rules.SwitchRule`;
+        default the printed argmax).
+    law_weights : list of array_like, optional
+        Instead of ``law_bands`` and ``law_Q``: one symmetric W_i per mode on ``[ẋ; x]`` (2n) or
+        ``[ẍ; ẋ; x]`` (3n); see :func:`fdsc.simulate.simulate`.
     cumulative_every : float, optional
         Step (s) of the coarse grid on which ``∫₀ᵗ zᵀz`` and ``∫₀ᵗ d²`` are kept: an even
         number of steps of dt. Needed by :meth:`StreamResult.running_l2` and
@@ -1005,9 +1031,12 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
     ------
     ValueError
         On a grid, coarse grid, trace bin or break that does not fit ``dt``, modes that do not
-        share B and D, a non-scalar disturbance, non-PD ``law_Q``, an unknown law or kernel.
+        share B and D, a non-scalar disturbance, non-PD ``law_Q``, law weights that are not
+        symmetric or given together with ``law_bands``/``law_Q``, an unknown law or kernel.
     TypeError
-        If ``modes``, ``d`` or ``law_bands`` are not of the accepted types.
+        If ``modes``, ``d``, ``law_bands`` or ``rule`` are not of the accepted types.
+    DimensionError
+        If a law weight is neither (2n, 2n) nor (3n, 3n).
     SingularFrequencyError
         If a disturbance tone sits at an eigenvalue of a mode.
     UnstableError
@@ -1029,7 +1058,8 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
     (0, array([1.]))
     """
     as_choice("kernel", kernel, STREAM_KERNELS)
-    case = Case(modes, d, horizon, dt, x0=x0, law_bands=law_bands, law_Q=law_Q, law=law, sigma0=sigma0)
+    case = Case(modes, d, horizon, dt, x0=x0, law_bands=law_bands, law_Q=law_Q, law=law,
+                sigma0=sigma0, rule=rule, law_weights=law_weights)
     pr = _prepare(case, "", cumulative_every, trace_every, dwell_edges)
     (res,) = _run([pr], kernel, 1)
     if res.diverged_at is not None:
