@@ -1,0 +1,536 @@
+"""Chapter 'wellposed_laws': what the printed law does in continuous time, and three well-posed laws.
+
+1. **The conflict region.** With the measured ẋ = A_a x + B d (a the active mode), mode a
+   *holds itself* at (x, d) if its own score wins there: ``argmax_j s_j^(a)(x, d) = a``. For two
+   modes every point of the state space is of one of four kinds: only mode 1 holds itself (the
+   law settles in 1), only mode 2 does, both do (the mode active on arrival stays: the law has
+   memory), or neither does. In the last set the sampled law switches at every sample (1, 2, 1,
+   …), so as dt → 0 the loop follows the *implicit* dynamics ``ẋ = ½(A_1 + A_2) x + B d`` with the
+   input ``u = ½(K_1 + K_2) x`` on average, and every sample spent there is a switch. (The
+   Filippov inclusion ``ẋ ∈ co{A_1 x + B d, A_2 x + B d}`` admits any mix there; sampling picks
+   ½.) For d = 0 the scores are quadratic forms in x, so the four sets are cones; a disturbance
+   moves them.
+2. **Convergence.** Runs at dt, dt/2, …, dt/16: energy, time shares, switch count × dt (→ the
+   time spent in the chattering set), the share of mode 1 inside that set (→ ½) and the
+   actuator rate |Δu|/dt at the switches (which grows like 1/dt).
+3. **Well-posed laws** (:class:`fdsc.SwitchRule`): hysteresis (relative margin), minimum dwell
+   time and a moving-window FD-EEF law (paper Remark 6), each against its parameter on the
+   paper's stationary, mixed and piecewise cases, at dt and dt/2.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._validation import as_count, as_positive
+from ..rules import SwitchRule
+from ..simulate import simulate, time_grid
+from ..stream import Case, simulate_batch
+from .cache import cached
+from .data import (
+    STATIONARY_DT,
+    aircraft,
+    mixed_disturbance,
+    our_q,
+    paper_disturbance,
+    paper_fdsc,
+    paper_gains,
+    paper_modes,
+    piecewise_disturbance,
+)
+from .names import CONTROLLER_GAINS
+from .results import RecordPart, entry
+
+__all__ = [
+    "REGION_KINDS",
+    "holds_itself",
+    "region_codes",
+    "LawRegions",
+    "law_regions",
+    "ConvergenceRow",
+    "ConvergenceStudy",
+    "convergence_study",
+    "LAW_GRIDS",
+    "LAW_CASES",
+    "LawStudy",
+    "law_study",
+    "record_part",
+]
+
+#: The four kinds of points (codes 0-3) for two modes.
+REGION_KINDS = ("only mode 1 holds itself", "only mode 2 holds itself",
+                "both hold themselves (memory)", "neither: chatters")
+
+#: The d value (besides 0) at which the regions are drawn: one tone's amplitude.
+D_REF = 1.0
+
+
+def _law_weights(Q):
+    pm = paper_modes()
+    return [np.kron(b.psi.real, np.asarray(q, dtype=float)) for b, q in zip(pm["bands"], Q, strict=True)]
+
+
+def holds_itself(modes, weights, x, d):
+    """Whether each mode, when active, prefers itself under the law with the measured ẋ.
+
+    Parameters
+    ----------
+    modes : list of LTISystem
+        The closed loops (I modes, n states).
+    weights : list of (2n, 2n) ndarray
+        The law's forms ``Re Ψ_i ⊗ Q_i`` on ``[ẋ; x]``.
+    x : (k, n) ndarray
+        States.
+    d : float or (k,) ndarray
+        Disturbance values.
+
+    Returns
+    -------
+    (I, k) bool ndarray
+        ``[a, k]``: mode a's own scores (ẋ = A_a x + B d) are largest for a at point k.
+    """
+    x = np.atleast_2d(x)
+    d = np.broadcast_to(np.asarray(d, dtype=float), (x.shape[0],))
+    out = np.empty((len(modes), x.shape[0]), dtype=bool)
+    for a, m in enumerate(modes):
+        v = np.hstack([x @ m.A.T + np.outer(d, m.B[:, 0]), x])
+        s = np.array([np.einsum("kr,rc,kc->k", v, W, v) for W in weights])
+        out[a] = s.argmax(axis=0) == a
+    return out
+
+
+def region_codes(holds):
+    """Codes of :data:`REGION_KINDS` from :func:`holds_itself` (two modes).
+
+    Parameters
+    ----------
+    holds : (2, k) bool ndarray
+
+    Returns
+    -------
+    (k,) int ndarray
+    """
+    h0, h1 = holds
+    return np.where(h0 & h1, 2, np.where(h0, 0, np.where(h1, 1, 3)))
+
+
+@dataclass(frozen=True)
+class LawRegions:
+    """The four kinds of points in the (x₁, x₂) plane for the paper's and our Q's, d = 0 and
+    d = :data:`D_REF`, with a trajectory on top.
+
+    Parameters
+    ----------
+    x1, x2 : (g,) ndarray
+        Grid axes.
+    codes : dict
+        ``{(q_label, d): (g, g) int ndarray}`` of :data:`REGION_KINDS` codes (rows x₂, columns x₁).
+    angular_share : dict
+        ``{q_label: (4,) ndarray}``: share of the directions of the plane of each kind at d = 0
+        (the sets are cones there).
+    traj_x : (k, 2) ndarray
+        States of a run of the paper's FDSC under the LF disturbance (every sample).
+    traj_sigma : (k,) ndarray
+        Its active modes.
+    traj_codes : (k,) ndarray
+        The kind of each of its samples (with the sample's own d).
+    """
+
+    x1: np.ndarray
+    x2: np.ndarray
+    codes: dict
+    angular_share: dict
+    traj_x: np.ndarray
+    traj_sigma: np.ndarray
+    traj_codes: np.ndarray
+
+
+@cached
+def law_regions(*, grid: int = 301, horizon: float = 60.0, dt: float = STATIONARY_DT) -> LawRegions:
+    """The regions of the printed law (measured ẋ) and a trajectory of the paper's FDSC.
+
+    Parameters
+    ----------
+    grid : int, optional
+        Points per axis.
+    horizon, dt : float, optional
+        The run under the LF disturbance (paper eq. (56)) drawn on top.
+
+    Returns
+    -------
+    LawRegions
+    """
+    grid = as_count("grid", grid, 11)
+    pm = paper_modes()
+    Qs = {"paper Q": pm["Q"], "our Q": our_q().Q}
+    run = paper_fdsc("paper").simulate(paper_disturbance("LF"), time_grid(horizon, dt))
+    span = 1.15 * np.abs(run.x).max(axis=0)
+    x1 = np.linspace(-span[0], span[0], grid)
+    x2 = np.linspace(-span[1], span[1], grid)
+    X = np.stack(np.meshgrid(x1, x2), axis=-1).reshape(-1, 2)
+    theta = np.linspace(0.0, np.pi, 3600, endpoint=False)
+    dirs = np.stack([np.cos(theta), np.sin(theta)], axis=1)
+    codes, shares = {}, {}
+    for label, Q in Qs.items():
+        W = _law_weights(Q)
+        for d in (0.0, D_REF):
+            codes[(label, d)] = region_codes(holds_itself(pm["modes"], W, X, d)).reshape(grid, grid)
+        c = region_codes(holds_itself(pm["modes"], W, dirs, 0.0))
+        shares[label] = np.bincount(c, minlength=4) / c.size
+    traj_codes = region_codes(holds_itself(pm["modes"], _law_weights(pm["Q"]), run.x, run.d))
+    return LawRegions(x1, x2, codes, shares, run.x, run.sigma, traj_codes)
+
+
+@dataclass(frozen=True)
+class ConvergenceRow:
+    """One run of the convergence study.
+
+    Parameters
+    ----------
+    case : str
+        The disturbance ("LF", "HF", "mixed").
+    dt : float
+        Step in s.
+    energy : float
+        ∫ zᵀz over the horizon.
+    share_hf : float
+        Time share of mode 2 (PassC-HF).
+    switches : int
+        Number of switches.
+    chatter_time : float
+        Time (s) spent at samples of the chattering set (neither mode holds itself).
+    share_lf_in_chatter : float
+        Share of those samples spent in mode 1 (→ ½ as dt → 0); nan if there are none.
+    du_max, du_median : float
+        Largest and median ‖Δu‖ = ‖(K_2 − K_1) x‖ at the switches.
+    """
+
+    case: str
+    dt: float
+    energy: float
+    share_hf: float
+    switches: int
+    chatter_time: float
+    share_lf_in_chatter: float
+    du_max: float
+    du_median: float
+
+    @property
+    def switch_time(self) -> float:
+        """Switch count × dt (s)."""
+        return self.switches * self.dt
+
+    @property
+    def rate_max(self) -> float:
+        """The actuator rate the largest switch asks for, ‖Δu‖/dt."""
+        return self.du_max / self.dt
+
+
+@dataclass(frozen=True)
+class ConvergenceStudy:
+    """Runs of the paper's FDSC (printed law) at dt, dt/2, …: see :func:`convergence_study`.
+
+    Parameters
+    ----------
+    horizon : float
+        Length of every run in s.
+    rows : tuple of ConvergenceRow
+        One per (case, dt), dt decreasing within a case.
+    """
+
+    horizon: float
+    rows: tuple
+
+    def cases(self) -> list:
+        """The disturbance cases, in order."""
+        return list(dict.fromkeys(r.case for r in self.rows))
+
+    def of(self, case: str) -> list:
+        """The rows of one case (dt decreasing)."""
+        return [r for r in self.rows if r.case == case]
+
+    def energy_spread(self, case: str) -> float:
+        """(max − min) / median of the energy over the steps of one case.
+
+        Returns
+        -------
+        float
+        """
+        e = np.array([r.energy for r in self.of(case)])
+        return float((e.max() - e.min()) / np.median(e))
+
+    def table(self) -> list:
+        """Rows for :func:`fdsc.paper.report.html_table`."""
+        return [{"case": r.case, "dt (s)": r.dt, "energy ∫zᵀz": r.energy, "share PassC-HF": r.share_hf,
+                 "switches": r.switches, "switches × dt (s)": r.switch_time,
+                 "time in chattering set (s)": r.chatter_time,
+                 "share of mode 1 there": r.share_lf_in_chatter, "max ‖Δu‖/dt": r.rate_max}
+                for r in self.rows]
+
+
+#: Disturbances of the convergence study.
+CONVERGENCE_CASES = ("LF", "HF", "mixed")
+
+
+def _case_disturbance(case):
+    if case == "mixed":
+        return mixed_disturbance(0.1)
+    return paper_disturbance(case)
+
+
+@cached
+def convergence_study(*, horizon: float = 50.0, dt: float = STATIONARY_DT, levels: int = 5) -> ConvergenceStudy:
+    """The printed law (paper's Q's, measured ẋ) at dt, dt/2, …, dt/2^(levels−1).
+
+    Parameters
+    ----------
+    horizon : float, optional
+        Length of each run in s.
+    dt : float, optional
+        The coarsest step in s.
+    levels : int, optional
+        Number of steps (≥ 3).
+
+    Returns
+    -------
+    ConvergenceStudy
+    """
+    horizon, dt = as_positive("horizon", horizon), as_positive("dt", dt)
+    levels = as_count("levels", levels, 3)
+    ctrl = paper_fdsc("paper")
+    pm = paper_modes()
+    W = _law_weights(pm["Q"])
+    dK = np.asarray(ctrl.gains[1]) - np.asarray(ctrl.gains[0])
+    rows = []
+    for case in CONVERGENCE_CASES:
+        d = _case_disturbance(case)
+        for level in range(levels):
+            h = dt / 2**level
+            run = ctrl.simulate(d, time_grid(horizon, h))
+            codes = region_codes(holds_itself(pm["modes"], W, run.x, run.d))
+            chatter = codes[:-1] == 3
+            sw = np.flatnonzero(np.diff(run.sigma)) + 1
+            du = np.linalg.norm(run.x[sw] @ dK.T, axis=1) if sw.size else np.zeros(1)
+            rows.append(ConvergenceRow(
+                case, h, run.energy(), float(run.time_share()[1]), int(sw.size),
+                float(chatter.sum() * h),
+                float(np.mean(run.sigma[:-1][chatter] == 0)) if chatter.any() else float("nan"),
+                float(du.max()), float(np.median(du))))
+    return ConvergenceStudy(float(horizon), tuple(rows))
+
+
+#: Parameter grids of the three well-posed laws (relative margin; seconds).
+LAW_GRIDS = {"hysteresis": (0.1, 0.5, 0.9, 0.99),
+             "dwell": (0.002, 0.01, 0.1, 1.0, 10.0),
+             "window": (0.01, 0.1, 1.0, 10.0)}
+
+#: The paper's simulation cases of the law study: stationary LF and HF (500 s), mixed with
+#: ρ_p = 0.1 (500 s), piecewise with T = 500 s, ρ_t = 0.2, ρ*_p = 0.1.
+LAW_CASES = ("LF", "HF", "mixed", "piecewise")
+
+_FIXED = ("PassC-EF", "PassC-LF", "PassC-HF")
+
+
+def _law_case(case):
+    if case == "piecewise":
+        d = piecewise_disturbance(500.0, 0.2, 0.1)
+        return d, float(d.breaks[-1])
+    return _case_disturbance(case), 500.0
+
+
+def _rule(law, p):
+    return {"hysteresis": SwitchRule.hysteresis, "dwell": SwitchRule.dwell_time,
+            "window": SwitchRule.moving_window}[law](p)
+
+
+@dataclass(frozen=True)
+class LawStudy:
+    """Energies and switch counts of the well-posed laws against their parameter.
+
+    Parameters
+    ----------
+    dt : float
+        The step; every run is repeated at dt/2.
+    energy : dict
+        ``{(law, param, case): ∫zᵀz at dt}``; law "printed" (param 0) and the fixed gains
+        ("PassC-…", param 0) included.
+    energy_half : dict
+        The same at dt/2.
+    switches, switches_half : dict
+        Switch counts at dt and dt/2 (switched runs only).
+    """
+
+    dt: float
+    energy: dict
+    energy_half: dict
+    switches: dict
+    switches_half: dict
+
+    def params(self, law: str) -> tuple:
+        """The parameter grid of a law."""
+        return LAW_GRIDS[law]
+
+    def well_posed(self, law: str, p: float, *, tol: float = 0.5) -> bool:
+        """Whether the switch count grows by at most ``tol`` (relative, or 2 switches) from dt
+        to dt/2 in every case."""
+        return all(self.switches_half[(law, p, c)] <= max((1 + tol) * self.switches[(law, p, c)],
+                                                           self.switches[(law, p, c)] + 2)
+                   for c in LAW_CASES)
+
+    def relative_energy(self, law: str, p: float) -> np.ndarray:
+        """Energy over the printed law's, per case of :data:`LAW_CASES`."""
+        return np.array([self.energy[(law, p, c)] / self.energy[("printed", 0.0, c)] for c in LAW_CASES])
+
+    def best_fixed(self, case: str) -> tuple[str, float]:
+        """The fixed gain with the lowest energy in a case, and its energy."""
+        name = min(_FIXED, key=lambda f: self.energy[(f, 0.0, case)])
+        return name, self.energy[(name, 0.0, case)]
+
+    def default(self, law: str) -> float | None:
+        """The chosen parameter: among the well-posed ones, the smallest geometric mean of
+        :meth:`relative_energy`; None if no parameter of the grid is well-posed."""
+        ok = [p for p in LAW_GRIDS[law] if self.well_posed(law, p)]
+        if not ok:
+            return None
+        return min(ok, key=lambda p: float(np.mean(np.log(self.relative_energy(law, p)))))
+
+    def table(self, law: str) -> list:
+        """One row per parameter: energy per case, switches at dt and dt/2, well-posed."""
+        rows = []
+        for p in LAW_GRIDS[law]:
+            row = {"parameter": p}
+            for c in LAW_CASES:
+                row[f"energy {c}"] = self.energy[(law, p, c)]
+            for c in LAW_CASES:
+                row[f"switches {c} (dt; dt/2)"] = (f"{self.switches[(law, p, c)]}; "
+                                                  f"{self.switches_half[(law, p, c)]}")
+            row["switch count independent of dt"] = self.well_posed(law, p)
+            rows.append(row)
+        return rows
+
+    def reference_table(self) -> list:
+        """The printed law and the fixed gains in the same cases."""
+        rows = []
+        for name in ("printed", *_FIXED):
+            row = {"controller": "FDSC, printed law" if name == "printed" else name}
+            for c in LAW_CASES:
+                row[f"energy {c}"] = self.energy[(name, 0.0, c)]
+            if name == "printed":
+                for c in LAW_CASES:
+                    row[f"switches {c} (dt; dt/2)"] = (f"{self.switches[(name, 0.0, c)]}; "
+                                                      f"{self.switches_half[(name, 0.0, c)]}")
+            rows.append(row)
+        return rows
+
+
+@cached
+def law_study(*, dt: float = STATIONARY_DT) -> LawStudy:
+    """Every law of :data:`LAW_GRIDS` (paper's Q's, measured ẋ) on :data:`LAW_CASES` at dt and dt/2.
+
+    Parameters
+    ----------
+    dt : float, optional
+        Step in s.
+
+    Returns
+    -------
+    LawStudy
+    """
+    dt = as_positive("dt", dt)
+    ctrl = paper_fdsc("paper")
+    plant, gains = aircraft(), paper_gains()
+    cases, keys = [], []
+    for h in (dt, dt / 2):
+        for c in LAW_CASES:
+            d, horizon = _law_case(c)
+            cases.append(ctrl.case(d, horizon, h))
+            keys.append(("printed", 0.0, c, h))
+            for law, grid in LAW_GRIDS.items():
+                for p in grid:
+                    cases.append(ctrl.case(d, horizon, h, rule=_rule(law, p)))
+                    keys.append((law, p, c, h))
+            for name in _FIXED:
+                cases.append(Case(plant.closed_loop(gains[CONTROLLER_GAINS[name]]), d, horizon, h))
+                keys.append((name, 0.0, c, h))
+    runs = simulate_batch(cases)
+    out = ({}, {}, {}, {})
+    for (law, p, c, h), e, s in zip(keys, runs.energy, runs.switches, strict=True):
+        half = h != dt
+        out[1 if half else 0][(law, p, c)] = float(e)
+        if law not in _FIXED:
+            out[3 if half else 2][(law, p, c)] = int(s)
+    return LawStudy(float(dt), *out)
+
+
+def _sliding_entry(regions, conv):
+    spread = {c: conv.energy_spread(c) for c in conv.cases()}
+    rec = {"angular_share_d0": {q: dict(zip(REGION_KINDS, map(float, s), strict=True))
+                                for q, s in regions.angular_share.items()},
+           "trajectory_share_by_kind": dict(zip(REGION_KINDS, map(float, np.bincount(
+               regions.traj_codes, minlength=4) / regions.traj_codes.size), strict=True)),
+           "convergence": [{"case": r.case, "dt": r.dt, "energy": r.energy, "share_hf": r.share_hf,
+                            "switches": r.switches, "switches_x_dt": r.switch_time,
+                            "chatter_time": r.chatter_time,
+                            "share_mode1_in_chatter": r.share_lf_in_chatter,
+                            "du_max": r.du_max, "du_median": r.du_median, "rate_max": r.rate_max}
+                           for r in conv.rows],
+           "energy_spread": spread}
+    return entry("sliding", "paper Remark 7 (sliding motion assumed absent; nothing printed)", None,
+                 rec, "new",
+                 "the printed law with the measured xdot: inside the set where neither mode holds "
+                 "itself the sampled law switches at every sample (share of mode 1 there -> 1/2), and "
+                 "on the border of that set it slides (mode 1 at every other sample); time shares and "
+                 "switches x dt converge as dt -> 0 while the energy scatters by a few per cent "
+                 "without a trend; the actuator rate |du|/dt grows like 1/dt", horizon=conv.horizon)
+
+
+def _law_record(study, law):
+    return {"parameters": list(LAW_GRIDS[law]),
+            "energy": {c: [study.energy[(law, p, c)] for p in LAW_GRIDS[law]] for c in LAW_CASES},
+            "energy_half_dt": {c: [study.energy_half[(law, p, c)] for p in LAW_GRIDS[law]]
+                               for c in LAW_CASES},
+            "switches": {c: [study.switches[(law, p, c)] for p in LAW_GRIDS[law]] for c in LAW_CASES},
+            "switches_half_dt": {c: [study.switches_half[(law, p, c)] for p in LAW_GRIDS[law]]
+                                 for c in LAW_CASES},
+            "well_posed": [study.well_posed(law, p) for p in LAW_GRIDS[law]],
+            "default": study.default(law)}
+
+
+def _reference_record(study):
+    return {name: {c: study.energy[(name, 0.0, c)] for c in LAW_CASES} for name in ("printed", *_FIXED)} | {
+        "printed_switches": {c: study.switches[("printed", 0.0, c)] for c in LAW_CASES},
+        "printed_switches_half_dt": {c: study.switches_half[("printed", 0.0, c)] for c in LAW_CASES}}
+
+
+def record_part(dwell=None) -> RecordPart:
+    """Record entries ``sliding``, ``hysteresis_dwell`` and ``eef_switching`` (all new).
+
+    Parameters
+    ----------
+    dwell : dict, optional
+        The certified dwell-time bound (a plain dict) to store in ``hysteresis_dwell``.
+
+    Returns
+    -------
+    RecordPart
+    """
+    regions, conv, study = law_regions(), convergence_study(), law_study()
+    reference = _reference_record(study)
+    hd = {"hysteresis": _law_record(study, "hysteresis"), "dwell": _law_record(study, "dwell"),
+          "reference": reference, "cases": list(LAW_CASES), "dt": study.dt}
+    if dwell is not None:
+        hd["dwell_time_bound"] = dwell
+    return RecordPart((
+        _sliding_entry(regions, conv),
+        entry("hysteresis_dwell", "paper Remark 7 (hysteresis, minimum dwell time; nothing printed)",
+              None, hd, "new",
+              "energies and switch counts at dt and dt/2 of the hysteresis (relative margin) and "
+              "minimum-dwell-time laws on the paper's stationary, mixed (rho_p = 0.1) and piecewise "
+              "(T = 500 s, rho_t = 0.2) cases; a law is well-posed here if its switch count does "
+              "not grow when dt halves"),
+        entry("eef_switching", "paper Remark 6 (an FD-EEF-based law; nothing printed)", None,
+              {"window": _law_record(study, "window"), "reference": reference,
+               "cases": list(LAW_CASES), "dt": study.dt}, "new",
+              "the law on the score averaged over the last T_w seconds (the FD-EEF of the recent "
+              "past per unit time), measured xdot, against T_w"),
+    ))
