@@ -42,11 +42,13 @@ from .lmi import GKYPResult, gkyp_certify, gkyp_gamma
 from .plant import LTISystem, Plant, as_plant, as_system
 from .random_systems import random_hurwitz, random_plant, random_spd, random_system
 from .rules import PRINTED, SwitchRule
+from .scores import frequency_weight, law_weight, score_average, score_matrix
 from .signals import LocalizedDominance, Piecewise, Sampled, Sinusoids, dominance_degree, localized_dominance
 from .simulate import SimResult, envelope, simulate, time_grid
 from .stream import BatchResult, Case, StreamResult, Trace, simulate_batch, simulate_stream
 from .switching import Theorem1Result, certify_q, design_q
 from .synthesis import SynthesisResult, optimize_gain, synthesize, synthesize_hinf
+from .three_mode import ScoreCertificate, certify_scores, design_scores
 
 __version__ = "0.2.0"
 
@@ -69,6 +71,9 @@ __all__ = [
     "Sinusoids", "Piecewise", "Sampled", "dominance_degree", "localized_dominance",
     "LocalizedDominance", "SimResult", "simulate", "time_grid", "envelope",
     "SwitchRule", "PRINTED",
+    # second-order scores and their certificate (three modes)
+    "score_matrix", "law_weight", "frequency_weight", "score_average", "ScoreCertificate",
+    "certify_scores", "design_scores",
     "Case", "Trace", "StreamResult", "BatchResult", "simulate_stream", "simulate_batch",
     # seeded random systems
     "random_hurwitz", "random_system", "random_plant", "random_spd",

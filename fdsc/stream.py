@@ -48,8 +48,8 @@ from scipy.linalg import expm
 from ._validation import as_choice, as_count, as_positive, as_vector, check_type
 from .exceptions import UnstableError, UnstableRunWarning
 from .frequency import check_no_pole_at
-from .signals import Piecewise, Sampled, Sinusoids
 from .rules import PRINTED, SwitchRule, apply_rule, rule_state
+from .signals import Piecewise, Sampled, Sinusoids
 from .simulate import LAWS, _as_modes, _derivatives, _law_weights, _shared_input
 
 __all__ = ["Case", "Trace", "StreamResult", "BatchResult", "simulate_stream", "simulate_batch",

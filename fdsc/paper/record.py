@@ -16,6 +16,8 @@ from . import (
     stationary,
     switching_law,
     theorem1,
+    three_mode,
+    wellposed,
 )
 from .cache import cached, shared_results
 from .environment import environment
@@ -79,7 +81,7 @@ def figure_status(record):
 
 #: The chapters that contribute to the record, in the record's order (first the printed inputs).
 CHAPTERS = (inputs, frequency_ranges, gkyp_lemma, passive_controllers, frequency_selective, theorem1,
-            switching_law, stationary, nonstationary)
+            switching_law, stationary, nonstationary, wellposed, three_mode)
 
 
 @cached

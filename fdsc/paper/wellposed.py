@@ -24,7 +24,7 @@ import numpy as np
 
 from .._validation import as_count, as_positive
 from ..rules import SwitchRule
-from ..simulate import simulate, time_grid
+from ..simulate import time_grid
 from ..stream import Case, simulate_batch
 from .cache import cached
 from .data import (
@@ -279,7 +279,8 @@ def _case_disturbance(case):
 
 
 @cached
-def convergence_study(*, horizon: float = 50.0, dt: float = STATIONARY_DT, levels: int = 5) -> ConvergenceStudy:
+def convergence_study(*, horizon: float = 50.0, dt: float = STATIONARY_DT,
+                      levels: int = 5) -> ConvergenceStudy:
     """The printed law (paper's Q's, measured ẋ) at dt, dt/2, …, dt/2^(levels−1).
 
     Parameters
