@@ -15,6 +15,18 @@ eqs. (33)-(34). Frequencies are in rad/s, times in s.
 
 from .bands import PHI, Band, band_from_spec
 from .design import FDSC
+from .dwell import (
+    DwellCheck,
+    DwellTimeBound,
+    LyapunovDwell,
+    PeriodicDwellMargin,
+    check_dwell_bound,
+    dwell_time_bound,
+    lyapunov_dwell,
+    periodic_dwell_margin,
+    random_dwell_signal,
+    switched_states,
+)
 from .energy import (
     PowerSplit,
     average_power,
@@ -71,6 +83,9 @@ __all__ = [
     "Sinusoids", "Piecewise", "Sampled", "dominance_degree", "localized_dominance",
     "LocalizedDominance", "SimResult", "simulate", "time_grid", "envelope",
     "SwitchRule", "PRINTED",
+    # dwell-time certificates
+    "DwellTimeBound", "dwell_time_bound", "LyapunovDwell", "lyapunov_dwell", "PeriodicDwellMargin",
+    "periodic_dwell_margin", "DwellCheck", "check_dwell_bound", "random_dwell_signal", "switched_states",
     # second-order scores and their certificate (three modes)
     "score_matrix", "law_weight", "frequency_weight", "score_average", "ScoreCertificate",
     "certify_scores", "design_scores",

@@ -38,6 +38,7 @@ from .data import (
     paper_modes,
     piecewise_disturbance,
 )
+from .dwell_time import dwell_certificate
 from .names import CONTROLLER_GAINS
 from .results import RecordPart, entry
 
@@ -54,6 +55,8 @@ __all__ = [
     "LAW_CASES",
     "LawStudy",
     "law_study",
+    "DwellLawCheck",
+    "dwell_law_check",
     "record_part",
 ]
 
@@ -463,6 +466,58 @@ def law_study(*, dt: float = STATIONARY_DT) -> LawStudy:
     return LawStudy(float(dt), *out)
 
 
+@dataclass(frozen=True)
+class DwellLawCheck:
+    """The dwell-time law of the simulator at the certified τ* (d = 0, seeded initial states).
+
+    Parameters
+    ----------
+    tau : float
+        The dwell time used (1.01 τ*), s.
+    horizon : float
+        Length of each run in s.
+    final_ratio : (k,) ndarray
+        ‖x(T)‖/‖x(0)‖ per run.
+    switches : (k,) int ndarray
+        Switches per run.
+    """
+
+    tau: float
+    horizon: float
+    final_ratio: np.ndarray
+    switches: np.ndarray
+
+
+@cached
+def dwell_law_check(*, n_initial: int = 10, horizon: float = 600.0, dt: float = 1e-2,
+                    seed: int = 1) -> DwellLawCheck:
+    """Run the paper's FDSC under ``SwitchRule.dwell_time(1.01 τ*)`` with d = 0.
+
+    Parameters
+    ----------
+    n_initial : int, optional
+        Number of standard-normal initial states.
+    horizon, dt : float, optional
+        Length and step of each run in s (the step is exact for d = 0).
+    seed : int, optional
+        Seed of the initial states.
+
+    Returns
+    -------
+    DwellLawCheck
+    """
+    tau = 1.01 * dwell_certificate().bound.tau
+    ctrl = paper_fdsc("paper")
+    rng = np.random.default_rng(seed)
+    x0s = rng.standard_normal((as_count("n_initial", n_initial), 2))
+    zero = mixed_disturbance(0.0).scaled(0.0)
+    runs = simulate_batch([ctrl.case(zero, horizon, dt, x0=x0, rule=SwitchRule.dwell_time(tau))
+                           for x0 in x0s])
+    ratios = np.array([np.linalg.norm(runs[c].x_final) / np.linalg.norm(x0)
+                       for c, x0 in enumerate(x0s)])
+    return DwellLawCheck(float(tau), float(horizon), ratios, np.asarray(runs.switches))
+
+
 def _sliding_entry(regions, conv):
     spread = {c: conv.energy_spread(c) for c in conv.cases()}
     rec = {"angular_share_d0": {q: dict(zip(REGION_KINDS, map(float, s), strict=True))
@@ -503,24 +558,24 @@ def _reference_record(study):
         "printed_switches_half_dt": {c: study.switches_half[("printed", 0.0, c)] for c in LAW_CASES}}
 
 
-def record_part(dwell=None) -> RecordPart:
-    """Record entries ``sliding``, ``hysteresis_dwell`` and ``eef_switching`` (all new).
-
-    Parameters
-    ----------
-    dwell : dict, optional
-        The certified dwell-time bound (a plain dict) to store in ``hysteresis_dwell``.
+def record_part() -> RecordPart:
+    """Record entries ``sliding``, ``hysteresis_dwell`` (with the certified dwell time of
+    :func:`fdsc.paper.dwell_time.dwell_certificate`) and ``eef_switching`` (all new).
 
     Returns
     -------
     RecordPart
     """
     regions, conv, study = law_regions(), convergence_study(), law_study()
+    dwell = dwell_certificate().record_dict()
+    check = dwell_law_check()
+    dwell["dwell_law_check"] = {"tau": check.tau, "horizon": check.horizon,
+                                "max_final_ratio": float(check.final_ratio.max()),
+                                "switches": check.switches.tolist()}
     reference = _reference_record(study)
     hd = {"hysteresis": _law_record(study, "hysteresis"), "dwell": _law_record(study, "dwell"),
           "reference": reference, "cases": list(LAW_CASES), "dt": study.dt}
-    if dwell is not None:
-        hd["dwell_time_bound"] = dwell
+    hd["dwell_time_bound"] = dwell
     return RecordPart((
         _sliding_entry(regions, conv),
         entry("hysteresis_dwell", "paper Remark 7 (hysteresis, minimum dwell time; nothing printed)",
