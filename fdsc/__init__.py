@@ -51,6 +51,7 @@ from .exceptions import (
 )
 from .frequency import BandPeak, band_peak, freqresp, sigma_max, steady_state_gain
 from .lmi import GKYPResult, gkyp_certify, gkyp_gamma
+from .lyapunov_jumps import SwitchingCertificate, certify_switching, certify_switching_gain, switching_forms
 from .plant import LTISystem, Plant, as_plant, as_system
 from .random_systems import random_hurwitz, random_plant, random_spd, random_system
 from .rules import PRINTED, SwitchRule
@@ -83,6 +84,8 @@ __all__ = [
     "Sinusoids", "Piecewise", "Sampled", "dominance_degree", "localized_dominance",
     "LocalizedDominance", "SimResult", "simulate", "time_grid", "envelope",
     "SwitchRule", "PRINTED",
+    # gap-closing certificates of the switching law
+    "SwitchingCertificate", "certify_switching", "certify_switching_gain", "switching_forms",
     # dwell-time certificates
     "DwellTimeBound", "dwell_time_bound", "LyapunovDwell", "lyapunov_dwell", "PeriodicDwellMargin",
     "periodic_dwell_margin", "DwellCheck", "check_dwell_bound", "random_dwell_signal", "switched_states",

@@ -16,6 +16,7 @@ from . import (
     stationary,
     switching_law,
     theorem1,
+    theorem1_counterexamples,
     three_mode,
     wellposed,
 )
@@ -81,7 +82,7 @@ def figure_status(record):
 
 #: The chapters that contribute to the record, in the record's order (first the printed inputs).
 CHAPTERS = (inputs, frequency_ranges, gkyp_lemma, passive_controllers, frequency_selective, theorem1,
-            switching_law, stationary, nonstationary, wellposed, three_mode)
+            theorem1_counterexamples, switching_law, stationary, nonstationary, wellposed, three_mode)
 
 
 @cached

@@ -245,15 +245,35 @@ class ConvergenceStudy:
     rows: tuple
 
     def cases(self) -> list:
-        """The disturbance cases, in order."""
+        """The disturbance cases, in order.
+
+        Returns
+        -------
+        list of str
+        """
         return list(dict.fromkeys(r.case for r in self.rows))
 
     def of(self, case: str) -> list:
-        """The rows of one case (dt decreasing)."""
+        """The rows of one case (dt decreasing).
+
+        Parameters
+        ----------
+        case : str
+            One of :data:`CONVERGENCE_CASES`.
+
+        Returns
+        -------
+        list of ConvergenceRow
+        """
         return [r for r in self.rows if r.case == case]
 
     def energy_spread(self, case: str) -> float:
         """(max − min) / median of the energy over the steps of one case.
+
+        Parameters
+        ----------
+        case : str
+            One of :data:`CONVERGENCE_CASES`.
 
         Returns
         -------
@@ -263,7 +283,12 @@ class ConvergenceStudy:
         return float((e.max() - e.min()) / np.median(e))
 
     def table(self) -> list:
-        """Rows for :func:`fdsc.paper.report.html_table`."""
+        """Rows for :func:`fdsc.paper.report.html_table`.
+
+        Returns
+        -------
+        list of dict
+        """
         return [{"case": r.case, "dt (s)": r.dt, "energy ∫zᵀz": r.energy, "share PassC-HF": r.share_hf,
                  "switches": r.switches, "switches × dt (s)": r.switch_time,
                  "time in chattering set (s)": r.chatter_time,
@@ -370,36 +395,89 @@ class LawStudy:
     switches: dict
     switches_half: dict
 
-    def params(self, law: str) -> tuple:
-        """The parameter grid of a law."""
-        return LAW_GRIDS[law]
-
     def well_posed(self, law: str, p: float, *, tol: float = 0.5) -> bool:
         """Whether the switch count grows by at most ``tol`` (relative, or 2 switches) from dt
-        to dt/2 in every case."""
+        to dt/2 in every case.
+
+        Parameters
+        ----------
+        law : str
+            A key of :data:`LAW_GRIDS` or "printed".
+        p : float
+            The law's parameter (0 for "printed").
+        tol : float, optional
+            Allowed relative growth.
+
+        Returns
+        -------
+        bool
+        """
         return all(self.switches_half[(law, p, c)] <= max((1 + tol) * self.switches[(law, p, c)],
                                                            self.switches[(law, p, c)] + 2)
                    for c in LAW_CASES)
 
     def relative_energy(self, law: str, p: float) -> np.ndarray:
-        """Energy over the printed law's, per case of :data:`LAW_CASES`."""
+        """Energy over the printed law's, per case of :data:`LAW_CASES`.
+
+        Parameters
+        ----------
+        law : str
+            A key of :data:`LAW_GRIDS`.
+        p : float
+            The law's parameter.
+
+        Returns
+        -------
+        (4,) ndarray
+        """
         return np.array([self.energy[(law, p, c)] / self.energy[("printed", 0.0, c)] for c in LAW_CASES])
 
     def best_fixed(self, case: str) -> tuple[str, float]:
-        """The fixed gain with the lowest energy in a case, and its energy."""
+        """The fixed gain with the lowest energy in a case, and its energy.
+
+        Parameters
+        ----------
+        case : str
+            One of :data:`LAW_CASES`.
+
+        Returns
+        -------
+        name : str
+        energy : float
+        """
         name = min(_FIXED, key=lambda f: self.energy[(f, 0.0, case)])
         return name, self.energy[(name, 0.0, case)]
 
     def default(self, law: str) -> float | None:
         """The chosen parameter: among the well-posed ones, the smallest geometric mean of
-        :meth:`relative_energy`; None if no parameter of the grid is well-posed."""
+        :meth:`relative_energy`; None if no parameter of the grid is well-posed.
+
+        Parameters
+        ----------
+        law : str
+            A key of :data:`LAW_GRIDS`.
+
+        Returns
+        -------
+        float or None
+        """
         ok = [p for p in LAW_GRIDS[law] if self.well_posed(law, p)]
         if not ok:
             return None
         return min(ok, key=lambda p: float(np.mean(np.log(self.relative_energy(law, p)))))
 
     def table(self, law: str) -> list:
-        """One row per parameter: energy per case, switches at dt and dt/2, well-posed."""
+        """One row per parameter: energy per case, switches at dt and dt/2, well-posed.
+
+        Parameters
+        ----------
+        law : str
+            A key of :data:`LAW_GRIDS`.
+
+        Returns
+        -------
+        list of dict
+        """
         rows = []
         for p in LAW_GRIDS[law]:
             row = {"parameter": p}
@@ -413,7 +491,12 @@ class LawStudy:
         return rows
 
     def reference_table(self) -> list:
-        """The printed law and the fixed gains in the same cases."""
+        """The printed law and the fixed gains in the same cases.
+
+        Returns
+        -------
+        list of dict
+        """
         rows = []
         for name in ("printed", *_FIXED):
             row = {"controller": "FDSC, printed law" if name == "printed" else name}
