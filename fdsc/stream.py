@@ -50,7 +50,7 @@ from .exceptions import UnstableError, UnstableRunWarning
 from .frequency import check_no_pole_at
 from .rules import PRINTED, SwitchRule, apply_rule, rule_state
 from .signals import Piecewise, Sampled, Sinusoids
-from .simulate import LAWS, _as_modes, _derivatives, _law_weights, _shared_input
+from .simulate import LAWS, _as_modes, _derivatives, _law_weights, _scores, _shared_input
 
 __all__ = ["Case", "Trace", "StreamResult", "BatchResult", "simulate_stream", "simulate_batch",
            "PHASOR_BLOCK", "STREAM_KERNELS"]
@@ -94,6 +94,7 @@ def _case_loop(N, dt, nm, Phi, A, B, C, D, W, Wt, law, sigma0, x0,
     scv = sc[:nm]           # the case's own modes (padded modes of a batch are never chosen)
     effv = eff[:nm]
     rsv = ring_sum[:nm]
+    Av = A[:nm]
     x = x0.copy()
     xn = np.empty(n)
     v = np.empty(q)
@@ -195,15 +196,7 @@ def _case_loop(N, dt, nm, Phi, A, B, C, D, W, Wt, law, sigma0, x0,
                 for i in range(nm):
                     sc[i] = sa[i] + sb[i]
             else:
-                for i in range(nm):
-                    _derivatives(A, B, i, x, dk, ddk, v, n, q)
-                    score = 0.0
-                    for r in range(q):
-                        row = 0.0
-                        for c in range(q):
-                            row += W[i, r, c] * v[c]
-                        score += v[r] * row
-                    sc[i] = score
+                _scores(Av, B, W, x, dk, ddk, prev, True, v, scv)
             if plain:
                 best = -np.inf
                 choice = prev

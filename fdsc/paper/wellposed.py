@@ -24,6 +24,7 @@ import numpy as np
 
 from .._validation import as_count, as_positive
 from ..rules import SwitchRule
+from ..signals import Sinusoids
 from ..simulate import time_grid
 from ..stream import Case, simulate_batch
 from .cache import cached
@@ -593,7 +594,7 @@ def dwell_law_check(*, n_initial: int = 10, horizon: float = 600.0, dt: float = 
     ctrl = paper_fdsc("paper")
     rng = np.random.default_rng(seed)
     x0s = rng.standard_normal((as_count("n_initial", n_initial), 2))
-    zero = mixed_disturbance(0.0).scaled(0.0)
+    zero = Sinusoids([0.0], [1.0])
     runs = simulate_batch([ctrl.case(zero, horizon, dt, x0=x0, rule=SwitchRule.dwell_time(tau))
                            for x0 in x0s])
     ratios = np.array([np.linalg.norm(runs[c].x_final) / np.linalg.norm(x0)
