@@ -573,7 +573,7 @@ class DwellLawCheck:
 
 
 @cached
-def dwell_law_check(*, n_initial: int = 10, horizon: float = 600.0, dt: float = 1e-2,
+def dwell_law_check(*, n_initial: int = 10, horizon: float = 120.0, dt: float = 1e-2,
                     seed: int = 1) -> DwellLawCheck:
     """Run the paper's FDSC under ``SwitchRule.dwell_time(1.01 τ*)`` with d = 0.
 
