@@ -29,7 +29,7 @@ from .data import (
     paper_gains,
     piecewise_disturbance,
 )
-from .examples import OPEN_LOOP, Example
+from .examples import OPEN_LOOP, Example, beats
 from .nonstationary import mixed_sweep, piecewise_sweep
 from .passive_controllers import hf_best
 from .results import RecordPart, entry
@@ -125,12 +125,34 @@ class Scenario:
     input_energy: float
 
     def winner(self, among=None) -> str:
-        """The controller of least energy (among ``among``, default all)."""
+        """The controller of least energy.
+
+        Parameters
+        ----------
+        among : sequence of str, optional
+            The controllers compared (default all).
+
+        Returns
+        -------
+        str
+        """
         among = tuple(self.energy) if among is None else tuple(among)
         return min(among, key=lambda n: self.energy[n])
 
     def factor(self, name: str, among=None) -> float:
-        """Energy of ``name`` over the least energy among ``among`` (1 for the winner)."""
+        """Energy of a controller over the least energy (1 for the winner).
+
+        Parameters
+        ----------
+        name : str
+            The controller.
+        among : sequence of str, optional
+            The controllers whose least energy is the reference (default all).
+
+        Returns
+        -------
+        float
+        """
         return float(self.energy[name] / self.energy[self.winner(among)])
 
 
@@ -153,6 +175,9 @@ class Baselines:
         ``{switched controller: (2,) ndarray}``: γ_i certified by Theorem 1 for its Q's.
     switches : dict
         ``{switched controller: (k,) ndarray}``: switch count in each scenario.
+    ideal_piecewise : (r,) ndarray
+        ∫zᵀz of the ideal segment law over the ρ_t family (PassC-HF on the HF pieces, PassC-LF
+        on the LF piece, :meth:`~fdsc.paper.examples.Example.segment_ideal`).
     """
 
     names: tuple
@@ -161,19 +186,57 @@ class Baselines:
     peaks: dict
     gammas: dict
     switches: dict
+    ideal_piecewise: np.ndarray
+
+    def ideal_ratio(self) -> np.ndarray:
+        """The ideal segment law's energy over the least energy of the fixed gains, along ρ_t."""
+        return np.array([e / s.energy[s.winner(FIXED)]
+                         for e, s in zip(self.ideal_piecewise, self.family("piecewise"), strict=True)])
 
     def family(self, family: str) -> tuple:
-        """The scenarios of one family ("stationary", "mixed" or "piecewise")."""
+        """The scenarios of one family.
+
+        Parameters
+        ----------
+        family : {"stationary", "mixed", "piecewise"}
+
+        Returns
+        -------
+        tuple of Scenario
+        """
         return tuple(s for s in self.scenarios if s.family == family)
 
     def energies(self, family: str) -> tuple:
-        """``(param (m,), {controller: (m,) energies})`` of one family."""
+        """The parameters and energies of one family.
+
+        Parameters
+        ----------
+        family : {"stationary", "mixed", "piecewise"}
+
+        Returns
+        -------
+        param : (m,) ndarray
+            ρ_p or ρ_t (NaN for the stationary cases).
+        energy : dict
+            ``{controller: (m,) ndarray}``.
+        """
         sc = self.family(family)
         return (np.array([s.param for s in sc]),
                 {n: np.array([s.energy[n] for s in sc]) for n in self.names})
 
     def wins(self, among=None) -> dict:
-        """``{controller: number of scenarios it wins}`` (among ``among``, default all)."""
+        """How many scenarios each controller wins.
+
+        Parameters
+        ----------
+        among : sequence of str, optional
+            The controllers compared (default all).
+
+        Returns
+        -------
+        dict
+            ``{controller: number of scenarios of least energy}``.
+        """
         among = self.names if among is None else tuple(among)
         out = dict.fromkeys(among, 0)
         for s in self.scenarios:
@@ -208,22 +271,36 @@ class Baselines:
                 for r in rows]
 
     def switched_ratio(self, name: str) -> np.ndarray:
-        """Energy of a switched controller over the least energy of the fixed ones, per case."""
+        """Energy of a switched controller over the least energy of the fixed ones, per case.
+
+        Parameters
+        ----------
+        name : str
+            One of :data:`SWITCHED`.
+
+        Returns
+        -------
+        (k,) ndarray
+        """
         return np.array([s.energy[name] / s.energy[s.winner(FIXED)] for s in self.scenarios])
 
     def pays(self) -> str:
         """One sentence: whether FDSC (any of its variants) pays in the paper's cases, with numbers."""
         n = len(self.scenarios)
         ratios = {k: self.switched_ratio(k) for k in SWITCHED}
-        best = max(SWITCHED, key=lambda k: (int(np.sum(ratios[k] < 1.0)), -np.median(ratios[k])))
+        best = max(SWITCHED, key=lambda k: (int(np.sum(beats(ratios[k]))), -np.median(ratios[k])))
         fixed = {k: v for k, v in self.wins(FIXED).items() if v}
         r = ratios[best]
-        any_win = int(np.sum(np.min([ratios[k] for k in SWITCHED], axis=0) < 1.0))
+        any_win = int(np.sum(beats(np.min([ratios[k] for k in SWITCHED], axis=0))))
         return (f"A switched controller has less energy than every fixed one in {any_win} of the {n} "
                 f"cases; the best variant, {best}, has "
                 f"{r.min():.3g} to {r.max():.3g} times the energy of the best fixed controller (median "
                 f"{np.median(r):.3g}), and the best fixed controller is "
-                + ", ".join(f"{k} in {v}" for k, v in fixed.items()) + " of the cases.")
+                + ", ".join(f"{k} in {v}" for k, v in fixed.items()) + " of the cases. "
+                f"The ideal segment law (PassC-LF on the LF piece, PassC-HF on the HF pieces of the "
+                f"rho_t family) has {self.ideal_ratio().min():.3g} to {self.ideal_ratio().max():.3g} "
+                f"times the energy of the best fixed controller: it beats it at "
+                f"{int(np.sum(beats(self.ideal_ratio())))} of {self.ideal_ratio().size} values of rho_t.")
 
     def hf_best_gain(self) -> dict:
         """``{family: (min, max)}`` of FDSC (HF best)'s energy over the printed FDSC's."""
@@ -261,6 +338,9 @@ class Baselines:
         return RecordPart((
             entry("baselines", "Sec. IV, paper Figs. 4-8 (all simulation cases) with baselines", None,
                   {"stationary": stat, "wins": wins, "winner_table": table,
+                   "ideal_segment_law_rho_t": {"rho_t": [s.param for s in self.family("piecewise")],
+                                               "energy": self.ideal_piecewise.tolist(),
+                                               "ratio_to_best_fixed": self.ideal_ratio().tolist()},
                    "steady_gain": self.steady, "band_peak": self.peaks}, "new", note),
             entry("hf_good_in_band", "Sec. IV, FDSC with K_f3 replaced by the best certified HF design",
                   None, {"energy_ratio_to_printed_fdsc": {k: list(v) for k, v in g.items()},
@@ -322,8 +402,13 @@ def baselines() -> Baselines:
                      "HF": fdsc.steady_state_gain(cl, hf.frequencies, hf.amplitudes)}
         peaks[n] = {k: fdsc.band_peak(cl, ex.bands[k]).gamma for k in ("LF", "HF")}
     gammas = {n: np.asarray(ex.designs[n][0].gammas) for n in SWITCHED}
+    sim, sweep = paper_data("simulation"), piecewise_sweep()
+    ideal = np.array([ex.segment_ideal(piecewise_disturbance(sim["piecewise_T"]["value"], p,
+                                                             sim["piecewise_rho_p_star"]["value"]),
+                                       h, ("PassC-LF", "PassC-HF"))
+                      for p, h in zip(sweep.param, sweep.horizon, strict=True)])
     return Baselines(names, tuple(scen), steady, peaks, gammas,
-                     {n: np.array(v) for n, v in switches.items()})
+                     {n: np.array(v) for n, v in switches.items()}, ideal)
 
 
 def sigma_curves(n: int = 600) -> tuple:

@@ -12,10 +12,33 @@ import numpy as np
 
 import fdsc
 
-__all__ = ["OPEN_LOOP", "Example", "Comparison"]
+__all__ = ["OPEN_LOOP", "TIE_RTOL", "beats", "Example", "Comparison"]
 
 #: Name of the open loop (K = 0) among an example's fixed gains.
 OPEN_LOOP = "open loop"
+
+#: Energies within this relative distance are a tie, not a win: a switched controller that runs
+#: one mode throughout has that fixed gain's energy up to rounding, which differs between machines.
+TIE_RTOL = 1e-6
+
+
+def beats(ratio):
+    """Where an energy ratio (controller over reference) is a win: below 1 by more than a tie.
+
+    Parameters
+    ----------
+    ratio : float or array_like
+
+    Returns
+    -------
+    bool or ndarray of bool
+
+    Examples
+    --------
+    >>> beats([0.5, 1.0 - 1e-9, 1.2]).tolist()
+    [True, False, False]
+    """
+    return np.asarray(ratio) < 1.0 - TIE_RTOL
 
 
 @dataclass(frozen=True)
@@ -79,7 +102,17 @@ class Example:
         return tuple(self.gains)
 
     def closed_loop(self, name: str) -> fdsc.LTISystem:
-        """The closed loop of a fixed gain."""
+        """The closed loop of a fixed gain.
+
+        Parameters
+        ----------
+        name : str
+            One of :attr:`fixed_names`.
+
+        Returns
+        -------
+        fdsc.LTISystem
+        """
         return self.plant.closed_loop(self.gains[name])
 
     def cases(self, d, horizon: float | None = None, dt: float | None = None, *, label=None,
@@ -113,6 +146,67 @@ class Example:
             else:
                 raise ValueError(f"names must be controllers of the example {self.names}, but found {name!r}")
         return out
+
+    def segment_ideal(self, d: fdsc.Piecewise, horizon: float, modes: tuple, *,
+                      dt: float | None = None) -> float:
+        """∫zᵀz of the ideal segment law: on each piece of ``d``, the fixed gain meant for the band
+        that dominates it, the state carried over at the breaks (a law that knows the signal).
+
+        Parameters
+        ----------
+        d : fdsc.Piecewise
+            Pieces of sums of tones.
+        horizon : float
+            Run length (s), a multiple of ``dt``; the breaks must lie on the grid.
+        modes : tuple of str
+            ``(LF controller, HF controller)``: the fixed gains run where the LF or the HF band
+            holds the larger share of a piece's power (:meth:`fdsc.Sinusoids.dominance`); the LF
+            controller where ``d`` is zero (before its first break, after its last).
+        dt : float, optional
+            Step (default the example's).
+
+        Returns
+        -------
+        float
+            Its energy; ``inf`` if a segment diverged.
+
+        Raises
+        ------
+        TypeError
+            If ``d`` is not a :class:`fdsc.Piecewise`.
+        ValueError
+            If a mode is not one of the example's fixed gains, or a break is not on the grid.
+        """
+        if not isinstance(d, fdsc.Piecewise):
+            raise TypeError(f"d must be an fdsc.Piecewise, but found {type(d).__name__}")
+        for m in modes:
+            if m not in self.gains:
+                raise ValueError(f"modes must name fixed gains of the example {self.fixed_names}, "
+                                 f"but found {m!r}")
+        dt = self.dt if dt is None else dt
+        zero = fdsc.Sinusoids([0.0], [1.0])
+        pieces = [(0.0, d.breaks[0], zero)] + [(d.breaks[k], d.breaks[k + 1], p)
+                                                for k, p in enumerate(d.parts)]
+        pieces.append((d.breaks[-1], horizon, zero))
+        x, total = np.zeros(self.plant.A.shape[0]), 0.0
+        for t0, t1, part in pieces:
+            t0, t1 = min(t0, horizon), min(t1, horizon)
+            if t1 <= t0:
+                continue
+            steps = (t1 - t0) / dt
+            if abs(steps - round(steps)) > 1e-9 * steps:
+                raise ValueError(f"the piece [{t0:g}, {t1:g}) s must begin and end on the grid of "
+                                 f"dt = {dt:g} s")
+            silent = not np.any(part.amplitudes)
+            lf_wins = silent or part.dominance(self.bands["LF"]) >= part.dominance(self.bands["HF"])
+            shifted = fdsc.Sinusoids(part.amplitudes, part.frequencies, part.phases + part.frequencies * t0)
+            loop = self.closed_loop(modes[0] if lf_wins else modes[1])
+            r = fdsc.simulate_stream(loop, shifted, t1 - t0, dt, x0=x)
+            if r.diverged_at is not None:
+                return float("inf")
+            total += r.energy
+            x = r.x_final
+        return float(total)
 
     def compare(self, disturbances, horizons=None, *, dt: float | None = None,
                 names=None) -> "Comparison":
@@ -179,6 +273,11 @@ class Comparison:
 
     def best(self, among) -> tuple:
         """The controller of least energy among ``among`` at each point, and that energy.
+
+        Parameters
+        ----------
+        among : sequence of str
+            The controllers compared.
 
         Returns
         -------

@@ -19,7 +19,7 @@ import fdsc
 
 from .._validation import as_choice, as_count, as_positive
 from .cache import cached
-from .examples import Example
+from .examples import Example, beats
 
 __all__ = [
     "SEED",
@@ -231,31 +231,96 @@ class MonteCarlo:
     diverged: dict
 
     def oracle(self, noise: bool = False) -> tuple:
-        """The best fixed controller of each draw and its energy."""
+        """The best fixed controller of each draw and its energy.
+
+        Parameters
+        ----------
+        noise : bool, optional
+            The noise runs instead of the tone draws.
+
+        Returns
+        -------
+        names : (m,) ndarray of str
+        energy : (m,) ndarray
+        """
         e = self.noise_energy if noise else self.energy
         stack = np.array([e[n] for n in self.fixed])
         k = np.argmin(stack, axis=0)
         return np.array(self.fixed)[k], stack[k, np.arange(stack.shape[1])]
 
     def ratio(self, name: str, against: str = "oracle", noise: bool = False) -> np.ndarray:
-        """Energy of ``name`` over the best fixed controller of the draw (``"oracle"``) or over
-        the one chosen in advance (``"advance"``), per draw."""
+        """Energy of a controller over the reference's, per draw.
+
+        Parameters
+        ----------
+        name : str
+            A controller of :attr:`names`.
+        against : {"oracle", "advance"}, optional
+            The best fixed controller of each draw, or the one chosen in advance.
+        noise : bool, optional
+            The noise runs instead of the tone draws.
+
+        Returns
+        -------
+        (m,) ndarray
+        """
         as_choice("against", against, ("oracle", "advance"))
         e = self.noise_energy if noise else self.energy
         ref = self.oracle(noise)[1] if against == "oracle" else e[self.in_advance]
         return e[name] / ref
 
     def quantiles(self, name: str, against: str = "oracle", noise: bool = False) -> np.ndarray:
-        """:data:`QUANTILES` of :meth:`ratio`."""
+        """:data:`QUANTILES` of :meth:`ratio`.
+
+        Parameters
+        ----------
+        name : str
+            A controller of :attr:`names`.
+        against : {"oracle", "advance"}, optional
+            The best fixed controller of each draw, or the one chosen in advance.
+        noise : bool, optional
+            The noise runs instead of the tone draws.
+
+        Returns
+        -------
+        (5,) ndarray
+        """
         return np.quantile(self.ratio(name, against, noise), QUANTILES)
 
     def win_rate(self, name: str, against: str = "oracle", noise: bool = False) -> float:
-        """Share of draws in which ``name`` has less energy than the reference."""
-        return float(np.mean(self.ratio(name, against, noise) < 1.0))
+        """Share of draws in which a controller has less energy than the reference (beyond a tie,
+        :data:`~fdsc.paper.examples.TIE_RTOL`).
+
+        Parameters
+        ----------
+        name : str
+            A controller of :attr:`names`.
+        against : {"oracle", "advance"}, optional
+            The best fixed controller of each draw, or the one chosen in advance.
+        noise : bool, optional
+            The noise runs instead of the tone draws.
+
+        Returns
+        -------
+        float
+        """
+        return float(np.mean(beats(self.ratio(name, against, noise))))
 
     def win_rate_by_alpha(self, name: str, against: str = "oracle") -> np.ndarray:
-        """Win rate of ``name`` in each bin of :data:`ALPHA_BINS` (NaN for an empty bin)."""
-        r = self.ratio(name, against) < 1.0
+        """Win rate of a controller in each bin of :data:`ALPHA_BINS` (NaN for an empty bin).
+
+        Parameters
+        ----------
+        name : str
+            A controller of :attr:`names`.
+        against : {"oracle", "advance"}, optional
+            The best fixed controller of each draw, or the one chosen in advance.
+
+        Returns
+        -------
+        (5,) ndarray
+        """
+        r = beats(self.ratio(name, against))
         k = np.clip(np.digitize(self.alpha, ALPHA_BINS) - 1, 0, len(ALPHA_BINS) - 2)
         return np.array([r[k == b].mean() if np.any(k == b) else np.nan
                          for b in range(len(ALPHA_BINS) - 1)])

@@ -51,7 +51,8 @@ def plot_stationary_baselines(result, ax=None):
 
 
 def plot_family_baselines(result, family, ax=None, *, names=None):
-    """Energies of the controllers over the ρ_p family (paper Fig. 7) or the ρ_t family (Fig. 8).
+    """Energies of the controllers over the ρ_p family (paper Fig. 7) or the ρ_t family (Fig. 8),
+    the latter with the ideal segment law.
 
     Parameters
     ----------
@@ -70,6 +71,9 @@ def plot_family_baselines(result, family, ax=None, *, names=None):
     for k, n in enumerate(result.names if names is None else names):
         color, marker, ls = _style(n, k)
         ax.semilogy(param, energy[n], color=color, marker=marker, ls=ls, ms=4, lw=1.2, label=n)
+    if family == "piecewise":
+        ax.semilogy(param, result.ideal_piecewise, color="k", ls="-.", lw=2.0, alpha=0.6,
+                    label="ideal segment law")
     ax.set_xlabel(r"$\rho_p$ [-]" if family == "mixed" else r"$\rho_t$ [-]")
     ax.set_ylabel(r"$\int z^\top z\,dt$ over the run [-]")
     ax.grid(True, which="both", alpha=0.3)

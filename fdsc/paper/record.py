@@ -6,11 +6,14 @@
 
 
 from . import (
+    baselines,
     claims,
     frequency_ranges,
     frequency_selective,
+    generic_example,
     gkyp_lemma,
     inputs,
+    monte_carlo,
     nonstationary,
     passive_controllers,
     stationary,
@@ -82,7 +85,8 @@ def figure_status(record):
 
 #: The chapters that contribute to the record, in the record's order (first the printed inputs).
 CHAPTERS = (inputs, frequency_ranges, gkyp_lemma, passive_controllers, frequency_selective, theorem1,
-            theorem1_counterexamples, switching_law, stationary, nonstationary, wellposed, three_mode)
+            theorem1_counterexamples, switching_law, stationary, nonstationary, wellposed, three_mode,
+            baselines, generic_example, monte_carlo)
 
 
 @cached

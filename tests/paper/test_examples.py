@@ -67,3 +67,30 @@ def test_bad_names_and_horizons(example):
         example.cases(fdsc.Sinusoids([1.0], [1.0]), names=("nope",))
     with pytest.raises(ValueError, match="one entry per disturbance"):
         example.compare([fdsc.Sinusoids([1.0], [1.0])], [1.0, 2.0])
+
+
+def test_segment_ideal_carries_the_state_over_the_breaks(example):
+    # reference: one uninterrupted run of the same gain (the pieces are one signal cut in two,
+    # so cutting must change nothing but the quadrature: each piece has an even number of steps)
+    tones = fdsc.Sinusoids([1.0, 0.3], [8.0, 15.0], [0.2, 1.0])
+    cut = fdsc.Piecewise([0.0, 1.0, 3.0], [tones, tones])
+    ref = fdsc.simulate(example.closed_loop("HF"), cut, fdsc.time_grid(3.0, 1e-3)).energy()
+    np.testing.assert_allclose(example.segment_ideal(cut, 3.0, ("LF", "HF")), ref, rtol=1e-9)
+    # an LF piece then an HF piece: each gain on its own piece
+    slow = fdsc.Sinusoids([1.0], [0.2])
+    both = fdsc.Piecewise([0.0, 2.0, 4.0], [slow, tones])
+    e = example.segment_ideal(both, 4.0, ("LF", "HF"))
+    first = fdsc.simulate_stream(example.closed_loop("LF"), slow, 2.0, 1e-3)
+    shifted = fdsc.Sinusoids(tones.amplitudes, tones.frequencies, tones.phases + 2.0 * tones.frequencies)
+    second = fdsc.simulate_stream(example.closed_loop("HF"), shifted, 2.0, 1e-3, x0=first.x_final)
+    np.testing.assert_allclose(e, first.energy + second.energy, rtol=1e-12)
+
+
+def test_segment_ideal_bad_inputs(example):
+    with pytest.raises(TypeError, match="d must be an fdsc.Piecewise"):
+        example.segment_ideal(fdsc.Sinusoids([1.0], [1.0]), 1.0, ("LF", "HF"))
+    d = fdsc.Piecewise([0.0, 0.0105, 1.0], [fdsc.Sinusoids([1.0], [1.0])] * 2)
+    with pytest.raises(ValueError, match="modes must name fixed gains"):
+        example.segment_ideal(d, 1.0, ("LF", "FDSC"))
+    with pytest.raises(ValueError, match="must begin and end on the grid"):
+        example.segment_ideal(d, 1.0, ("LF", "HF"))
