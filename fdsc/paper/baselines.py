@@ -298,9 +298,9 @@ class Baselines:
                 f"{np.median(r):.3g}), and the best fixed controller is "
                 + ", ".join(f"{k} in {v}" for k, v in fixed.items()) + " of the cases. "
                 f"The ideal segment law (PassC-LF on the LF piece, PassC-HF on the HF pieces of the "
-                f"rho_t family) has {self.ideal_ratio().min():.3g} to {self.ideal_ratio().max():.3g} "
+                f"ρ_t family) has {self.ideal_ratio().min():.3g} to {self.ideal_ratio().max():.3g} "
                 f"times the energy of the best fixed controller: it beats it at "
-                f"{int(np.sum(beats(self.ideal_ratio())))} of {self.ideal_ratio().size} values of rho_t.")
+                f"{int(np.sum(beats(self.ideal_ratio())))} of {self.ideal_ratio().size} values of ρ_t.")
 
     def hf_best_gain(self) -> dict:
         """``{family: (min, max)}`` of FDSC (HF best)'s energy over the printed FDSC's."""

@@ -359,7 +359,8 @@ class MonteCarlo:
         adv = self.win_rate(n, "advance")
         where = (f"it beats the best fixed controller of the draw in most draws only for α in "
                  f"{', '.join(good)}" if good else
-                 "it beats the best fixed controller of the draw in most draws for no range of α")
+                 "in no bin of α does it beat the best fixed controller of the draw in most draws: "
+                 "FDSC does not pay on these disturbances")
         return (f"On the {self.example} example, {n} beats the best fixed controller of the draw in "
                 f"{100 * self.win_rate(n):.0f} % of the {self.alpha.size} tone draws (median energy "
                 f"{med:.3g} times that controller's) and the controller fixed in advance "
