@@ -40,7 +40,6 @@ def test_study_shapes_and_laws(study):
     assert study.rho_p.shape == (21,) and study.rho_t.shape == (21,)
     assert {w.law for w in study.headline.rho_p} == {"FDSC", "FDSC (dwell)"}
     assert all(p.shape == (3,) for p in study.peaks.values())
-    assert study.compute_time < 60.0
 
 
 def test_generic_example_imports_only_the_public_api():
