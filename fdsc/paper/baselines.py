@@ -21,16 +21,13 @@ from .data import (
     STATIONARY_DT,
     STATIONARY_HORIZON,
     aircraft,
-    mixed_disturbance,
     paper_bands,
-    paper_data,
     paper_disturbance,
     paper_fdsc,
     paper_gains,
-    piecewise_disturbance,
 )
 from .examples import OPEN_LOOP, Example, beats
-from .nonstationary import mixed_sweep, piecewise_sweep
+from .nonstationary import family_signal, mixed_sweep, piecewise_sweep
 from .passive_controllers import hf_best
 from .results import RecordPart, entry
 
@@ -352,12 +349,7 @@ class Baselines:
 
 def _scenarios_of(example, family, sweep, names):
     """The scenarios of one swept family: the paper's four from ``sweep``, the others run here."""
-    if family == "mixed":
-        ds = [mixed_disturbance(p) for p in sweep.param]
-    else:
-        sim = paper_data("simulation")
-        ds = [piecewise_disturbance(sim["piecewise_T"]["value"], p, sim["piecewise_rho_p_star"]["value"])
-              for p in sweep.param]
+    ds = [family_signal(family, p)[0] for p in sweep.param]
     extra = [n for n in names if n not in _SWEPT]
     comp = example.compare(ds, sweep.horizon, names=extra)
     sym = "ρ_p" if family == "mixed" else "ρ_t"
@@ -389,7 +381,8 @@ def baselines() -> Baselines:
     scen = [Scenario(k, "stationary", float("nan"), {n: float(stat.energy[n][i]) for n in names},
                      float(stat.input_energy[i])) for i, k in enumerate(("LF", "HF"))]
     switches = {n: [int(v) for v in stat.switches[n]] for n in SWITCHED}
-    for family, sweep in (("mixed", mixed_sweep()), ("piecewise", piecewise_sweep())):
+    sweeps = {"mixed": mixed_sweep(), "piecewise": piecewise_sweep()}
+    for family, sweep in sweeps.items():
         sc, sw = _scenarios_of(ex, family, sweep, names)
         scen += sc
         for n in SWITCHED:
@@ -402,10 +395,8 @@ def baselines() -> Baselines:
                      "HF": fdsc.steady_state_gain(cl, hf.frequencies, hf.amplitudes)}
         peaks[n] = {k: fdsc.band_peak(cl, ex.bands[k]).gamma for k in ("LF", "HF")}
     gammas = {n: np.asarray(ex.designs[n][0].gammas) for n in SWITCHED}
-    sim, sweep = paper_data("simulation"), piecewise_sweep()
-    ideal = np.array([ex.segment_ideal(piecewise_disturbance(sim["piecewise_T"]["value"], p,
-                                                             sim["piecewise_rho_p_star"]["value"]),
-                                       h, ("PassC-LF", "PassC-HF"))
+    sweep = sweeps["piecewise"]
+    ideal = np.array([ex.segment_ideal(family_signal("piecewise", p)[0], h, ("PassC-LF", "PassC-HF"))
                       for p, h in zip(sweep.param, sweep.horizon, strict=True)])
     return Baselines(names, tuple(scen), steady, peaks, gammas,
                      {n: np.array(v) for n, v in switches.items()}, ideal)

@@ -18,8 +18,11 @@ import numpy as np
 import fdsc
 
 from .._validation import as_choice, as_count, as_positive
+from .baselines import aircraft_example
 from .cache import cached
 from .examples import Example, beats
+from .generic_example import generic_example
+from .results import RecordPart, entry
 
 __all__ = [
     "SEED",
@@ -60,11 +63,7 @@ EXAMPLES = ("aircraft", "generic")
 
 def _example(name):
     as_choice("example", name, EXAMPLES)
-    if name == "aircraft":
-        from .baselines import aircraft_example
-        return aircraft_example()
-    from .generic_example import generic_example
-    return generic_example()
+    return aircraft_example() if name == "aircraft" else generic_example()
 
 
 @dataclass(frozen=True)
@@ -437,7 +436,6 @@ def record_part():
     -------
     RecordPart
     """
-    from .results import RecordPart, entry
     parts = {name: monte_carlo(name) for name in EXAMPLES}
     note = " ".join(mc.pays() for mc in parts.values())
     return RecordPart((entry("monte_carlo", "issue 14: random disturbances (not in the paper)", None,

@@ -38,6 +38,7 @@ __all__ = [
     "P2_WINDOWS",
     "fdsc_designs",
     "sweep_cases",
+    "family_signal",
     "SweepRuns",
     "RHO_T_EXTENDED",
     "PAPER_CROSSOVER",
@@ -216,8 +217,21 @@ class SweepRuns:
         return data
 
 
-def _family_signal(family, p):
-    """The disturbance of one point of a family and its run length (paper Fig. 7 or Fig. 8)."""
+def family_signal(family: str, p: float) -> tuple:
+    """The disturbance of one point of a family and its run length (paper Fig. 7 or Fig. 8).
+
+    Parameters
+    ----------
+    family : {"mixed", "piecewise"}
+    p : float
+        ρ_p or ρ_t.
+
+    Returns
+    -------
+    d : Sinusoids or Piecewise
+    horizon : float
+        Run length in s (500 s, or 2T + ρ_t T).
+    """
     sim = paper_data("simulation")
     if family == "mixed":
         return mixed_disturbance(p), sim["mixed_horizon"]["value"]
@@ -236,7 +250,7 @@ def _run_family(family, params, dt, names=SWEEP_NAMES, windows=True):
     designs = fdsc_designs() if OUR_Q_NAME in names else {"paper": paper_fdsc("paper")}
     cases, horizons = [], []
     for p in params:
-        d, h = _family_signal(family, p)
+        d, h = family_signal(family, p)
         horizons.append(h)
         cases += sweep_cases(d, h, dt, names=names, label=float(p), designs=designs)
     batch = simulate_batch(cases, cumulative_every=COARSE_STEP if windows else None)
@@ -381,7 +395,7 @@ class Crossover:
 
 
 def _pair_energy(family, p, rival, dt, designs):
-    d, h = _family_signal(family, p)
+    d, h = family_signal(family, p)
     batch = simulate_batch(sweep_cases(d, h, dt, names=("FDSC", rival), designs=designs))
     return float(batch.energy[0]), float(batch.energy[1])
 

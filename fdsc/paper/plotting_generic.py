@@ -1,21 +1,16 @@
 """Figures of the generic-example chapter (result in, Axes out; never shows, never sets rcParams)."""
 
-import matplotlib.pyplot as plt
 import numpy as np
 
 from .generic_example import W_H, W_L, GenericStudy
+from .plotting import _axes as _new_axes
+from .plotting_pays import STYLE
 
 __all__ = ["plot_sigma", "plot_rho_p", "plot_rho_t"]
 
-_STYLE = {"open loop": ("0.5", ":"), "PassC-EF": ("tab:blue", "-"), "PassC-LF": ("tab:red", "-"),
-          "PassC-HF": ("tab:orange", "-"), "FDSC": ("tab:purple", "-"),
-          "FDSC (dwell)": ("tab:green", "--")}
-
 
 def _axes(ax):
-    if ax is None:
-        _, ax = plt.subplots(figsize=(6.5, 3.8), layout="constrained")
-    return ax
+    return _new_axes(ax, (6.5, 3.8))
 
 
 def plot_sigma(result: GenericStudy, ax=None):
@@ -34,7 +29,7 @@ def plot_sigma(result: GenericStudy, ax=None):
     """
     ax = _axes(ax)
     for name, s in result.sigma.items():
-        color, ls = _STYLE[name]
+        color, _, ls = STYLE[name]
         ax.loglog(result.omega, s, color=color, ls=ls, label=name)
     for w, text in ((W_L, r"$\varpi_l$"), (W_H, r"$\varpi_h$")):
         ax.axvline(w, color="k", lw=0.8, ls="--")
@@ -49,8 +44,8 @@ def plot_sigma(result: GenericStudy, ax=None):
 def _sweep(comp, param, ax, xlabel, log_x):
     ratio = comp.ratio()
     for name in comp.names:
-        color, ls = _STYLE[name]
-        ax.plot(param, ratio[name], color=color, ls=ls, marker="o", ms=3, label=name)
+        color, marker, ls = STYLE[name]
+        ax.plot(param, ratio[name], color=color, ls=ls, marker=marker, ms=3, label=name)
     ax.set_yscale("log")
     if log_x:
         ax.set_xscale("log")

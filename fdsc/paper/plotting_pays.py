@@ -1,7 +1,8 @@
 """Figures of the chapters 'baselines' and 'monte_carlo' (result in, Axes out)."""
 
-import matplotlib.pyplot as plt
 import numpy as np
+
+from .plotting import _axes
 
 __all__ = ["STYLE", "plot_stationary_baselines", "plot_family_baselines", "plot_mc_ratio", "plot_mc_cdf"]
 
@@ -15,12 +16,6 @@ _EXTRA = ("tab:cyan", "tab:olive", "tab:pink", "tab:gray")
 
 def _style(name, k):
     return STYLE.get(name, (_EXTRA[k % len(_EXTRA)], "o", "-"))
-
-
-def _axes(ax, figsize=(7, 4)):
-    if ax is None:
-        _, ax = plt.subplots(figsize=figsize, layout="constrained")
-    return ax
 
 
 def plot_stationary_baselines(result, ax=None):
