@@ -9,15 +9,16 @@ measured in the same run:
   time of a one-step run, i.e. minus the preparation);
 * **previous exact method** (``fdsc.simulate``, full trajectories, particular solutions computed
   in NumPy before its compiled loop): steps per second, and the agreement of the two (energy,
-  switch count, final state);
+  switch count, every state of a 2 s run, the same mode at every sample);
 * **scipy.integrate.solve_ivp** (DOP853, rtol = 1e-12) on the same switched system with the same
-  sampled law, one integration per sample interval: steps per second and its error against the
-  exact steps (equal accuracy: both at the 1e-10 level or better);
+  sampled law, one integration per sample interval: steps per second and the error of both
+  exact methods against it (equal accuracy: all at the 1e-12 level or better);
 * **batch**: a ρ_p sweep as in paper Fig. 7 (21 values of ρ_p in [0, 0.5]; the four printed
   gains K_e, K_f1, K_f2, K_f3 and FDSC; 500 s at 1 ms: 105 runs, 5.25e7 steps) in one call of
   ``fdsc.simulate_batch`` on every core, against the same cases run one by one;
 * **memory**: peak resident memory of a 1e8-step reduction-only run, measured in a fresh
-  process (its baseline after imports and compilation is reported beside it);
+  process; its baseline after imports and compilation (numba's LLVM, SciPy, CVXPY: the same for a
+  run of one step) is reported beside it, and ``run_mb_1e8`` is the run's own growth;
 * the relative error of an LTI output energy against its closed form.
 
 The last line printed is JSON with ``switched_steps_per_s``, ``speedup_vs_solve_ivp``,
@@ -130,8 +131,11 @@ def main():
     x_ivp = solve_ivp_switched(g2, ref.sigma, pm["modes"], d)
     ivp_rate = (g2.size - 1) / (time.perf_counter() - t0)
     ivp_err = float(np.max(np.abs(x_ivp - ref.x)) / np.max(np.abs(ref.x)))
-    short = simulate_stream(pm["modes"], d, 2.0, DT, **law)
-    stream_vs_exact = float(np.max(np.abs(short.x_final - ref.x[-1])) / np.max(np.abs(ref.x)))
+    short = simulate_stream(pm["modes"], d, 2.0, DT, **law, trace_every=DT)
+    scale = np.max(np.abs(ref.x))
+    stream_vs_exact = float(np.max(np.abs(short.trace.x_lo - ref.x)) / scale)
+    stream_vs_ivp = float(np.max(np.abs(short.trace.x_lo - x_ivp)) / scale)
+    same_sigma = bool(np.array_equal(np.argmax(short.trace.share, axis=1), ref.sigma))
 
     # batch: the ρ_p sweep of paper Fig. 7 (21 × 5 runs of 500 s)
     cases = sweep_cases()
@@ -173,6 +177,8 @@ def main():
         "switches_previous_method": int(old.switch_times.size),
         "switches_stream": new.switches,
         "stream_state_rel_err_vs_exact": stream_vs_exact,
+        "stream_state_rel_err_vs_solve_ivp": stream_vs_ivp,
+        "stream_same_modes_as_previous_method": same_sigma,
         "solve_ivp_steps_per_s": ivp_rate,
         "speedup_vs_solve_ivp": end_to_end / ivp_rate,
         "solve_ivp_rel_err_vs_exact": ivp_err,
@@ -186,6 +192,7 @@ def main():
         "threads": numba.get_num_threads(),
         "peak_mb_1e8": mem[10**8][1] if mem else None,
         "baseline_mb_after_imports": mem[10**8][0] if mem else None,
+        "run_mb_1e8": mem[10**8][1] - mem[10**8][0] if mem else None,
         "peak_mb_1e6": mem[10**6][1] if mem else None,
         "seconds_1e8": mem[10**8][2] if mem else None,
         "lti_energy_rel_err": abs(e - exact) / exact,
