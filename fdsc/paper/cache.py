@@ -26,6 +26,11 @@ from collections.abc import Callable
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
+try:
+    import fcntl
+except ImportError:        # not POSIX: no lock (concurrent processes may compute a value twice)
+    fcntl = None
+
 __all__ = ["cached", "fingerprint", "shared_results", "CACHE_ENV"]
 
 #: Environment variable naming the cache folder (unset: no caching).
@@ -63,6 +68,26 @@ def fingerprint() -> str:
     return h.hexdigest()
 
 
+@contextlib.contextmanager
+def _key_lock(path):
+    """Hold an exclusive lock on ``<path>.lock`` (POSIX ``flock``; no lock where unavailable).
+
+    Processes that share a cache folder (the workers of ``pytest -n``, the kernels they start)
+    then compute each value once: the others wait and read it. Locks of different keys are
+    independent, and a cached function only calls cached functions of other keys, so waiting
+    cannot deadlock.
+    """
+    if fcntl is None:
+        yield
+        return
+    with open(path.with_name(path.name + ".lock"), "a") as fh:
+        fcntl.flock(fh, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(fh, fcntl.LOCK_UN)
+
+
 def _plain(value):
     if isinstance(value, tuple):
         return all(_plain(v) for v in value)
@@ -87,7 +112,8 @@ def cached(fn: Callable) -> Callable:
     -----
     A value is stored as ``<module>.<qualname>-<key>.pickle``, the key hashing the
     :func:`fingerprint`, the function's name and its arguments; it is written to a temporary
-    file and renamed, so that a concurrent reader never sees half a file.
+    file and renamed, so that a concurrent reader never sees half a file. A process computing a
+    value holds a lock on its key, so that processes sharing the folder compute it once.
 
     Examples
     --------
@@ -108,12 +134,17 @@ def cached(fn: Callable) -> Callable:
         if path.is_file():
             with path.open("rb") as fh:
                 return pickle.load(fh)
-        value = fn(*args, **kwargs)
         path.parent.mkdir(parents=True, exist_ok=True)
-        # write then rename, so that a reader never sees half a file
-        with tempfile.NamedTemporaryFile(dir=path.parent, delete=False) as fh:
-            pickle.dump(value, fh)
-        os.replace(fh.name, path)
+        with _key_lock(path):
+            # another process may have computed it while this one waited for the lock
+            if path.is_file():
+                with path.open("rb") as fh:
+                    return pickle.load(fh)
+            value = fn(*args, **kwargs)
+            # write then rename, so that a reader never sees half a file
+            with tempfile.NamedTemporaryFile(dir=path.parent, delete=False) as fh:
+                pickle.dump(value, fh)
+            os.replace(fh.name, path)
         return value
 
     return wrapper

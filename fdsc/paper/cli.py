@@ -1,18 +1,21 @@
 """Command line of the paper layer (also reachable as: python -m fdsc reproduce).
 
-python -m fdsc reproduce --out DIR   recompute every artefact of the paper and write
-                                     DIR/reproduction.json (the reproduction record)
+python -m fdsc reproduce --out DIR [--jobs N]
+                                     recompute every artefact of the paper and write
+                                     DIR/reproduction.json (the reproduction record), the
+                                     chapters on N processes (default: the CPUs, at most 4)
 """
 
 import argparse
 import json
+import os
 import sys
 import time
 from pathlib import Path
 
 import numpy as np
 
-from .record import reproduction_record
+from .record import JOBS_ENV, reproduction_record
 
 __all__ = ["main", "reproduce", "to_jsonable", "RECORD_DIGITS"]
 
@@ -87,10 +90,24 @@ def reproduce(argv=None):
     parser = argparse.ArgumentParser(prog="python -m fdsc reproduce",
                                      description="recompute every artefact and write reproduction.json")
     parser.add_argument("--out", required=True, type=Path, help="output folder (created if missing)")
+    parser.add_argument("--jobs", type=int, default=None,
+                        help=f"processes computing the chapters (default: ${JOBS_ENV}, else the "
+                             "number of CPUs, at most 4)")
     args = parser.parse_args(sys.argv[2:] if argv is None else argv)
+    if args.jobs is not None and args.jobs < 1:
+        parser.error(f"--jobs must be at least 1, found {args.jobs}")
     _writable_dir(args.out)
     t0 = time.perf_counter()
-    record = reproduction_record()
+    saved = os.environ.get(JOBS_ENV)
+    if args.jobs is not None:
+        os.environ[JOBS_ENV] = str(args.jobs)
+    try:
+        record = reproduction_record()
+    finally:
+        if saved is None:
+            os.environ.pop(JOBS_ENV, None)
+        else:
+            os.environ[JOBS_ENV] = saved
     record["environment"]["elapsed_s"] = time.perf_counter() - t0
     path = args.out / "reproduction.json"
     path.write_text(json.dumps(to_jsonable(record), indent=1) + "\n", encoding="utf-8")

@@ -1,9 +1,15 @@
 """The reproduction record: every printed number beside ours, with a verdict.
 
 ``python -m fdsc reproduce --out DIR`` writes :func:`reproduction_record` to
-``DIR/reproduction.json``; the book's introduction renders the same entries.
+``DIR/reproduction.json``; the book's introduction renders the same entries. The chapters are
+computed by several processes at once (:data:`JOBS_ENV`), which share their results through
+the cache folder (:func:`fdsc.paper.cache.shared_results`).
 """
 
+import importlib
+import multiprocessing
+import os
+from concurrent.futures import ProcessPoolExecutor
 
 from . import (
     baselines,
@@ -30,6 +36,9 @@ from .results import RecordPart
 
 __all__ = [
     "reproduction_record",
+    "JOBS_ENV",
+    "record_jobs",
+    "chapter_parts",
     "FIGURE_IDS",
     "CHAPTERS",
     "PAPER_FIGURES",
@@ -89,14 +98,80 @@ CHAPTERS = (inputs, frequency_ranges, gkyp_lemma, passive_controllers, frequency
             baselines, generic_example, monte_carlo)
 
 
+#: Environment variable: how many processes compute the record's chapters (default: the number
+#: of CPUs, at most 4; 1 computes them in this process, one after the other).
+JOBS_ENV = "FDSC_JOBS"
+
+# the chapters that take longest are started first (a scheduling hint: the record does not
+# depend on it); the others follow in the order of CHAPTERS
+_LONGEST_FIRST = (nonstationary, monte_carlo, wellposed, theorem1_counterexamples, theorem1,
+                  baselines, passive_controllers, stationary)
+
+
+def record_jobs():
+    """The number of processes for the record: ``$FDSC_JOBS``, or the CPUs (at most 4).
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    ValueError
+        If ``FDSC_JOBS`` is set to anything but a whole number ≥ 1.
+    """
+    value = os.environ.get(JOBS_ENV)
+    if value is None or value == "":
+        return max(1, min(os.cpu_count() or 1, 4))
+    try:
+        jobs = int(value)
+    except ValueError:
+        jobs = 0
+    if jobs < 1:
+        raise ValueError(f"{JOBS_ENV} must be a whole number of processes ≥ 1, found {value!r}")
+    return jobs
+
+
+def _chapter_part(name):
+    return importlib.import_module(name).record_part()
+
+
+def chapter_parts(chapters, jobs):
+    """Every chapter's ``record_part()``, in the order given, computed by ``jobs`` processes.
+
+    Parameters
+    ----------
+    chapters : sequence of module
+        Chapter modules of :mod:`fdsc.paper` (each with ``record_part()``).
+    jobs : int
+        Processes (1: this process, one chapter after the other). The worker processes are
+        started fresh (``spawn``) and inherit the environment, so inside
+        :func:`~fdsc.paper.cache.shared_results` they share the results folder; its per-key
+        locks make a process that needs a result another one is computing wait for it.
+
+    Returns
+    -------
+    list of RecordPart
+    """
+    if jobs == 1 or len(chapters) < 2:
+        return [chapter.record_part() for chapter in chapters]
+    rank = {m.__name__: i for i, m in enumerate(_LONGEST_FIRST)}
+    order = sorted(chapters, key=lambda m: rank.get(m.__name__, len(rank)))
+    with ProcessPoolExecutor(min(jobs, len(chapters)),
+                             mp_context=multiprocessing.get_context("spawn")) as pool:
+        futures = {m.__name__: pool.submit(_chapter_part, m.__name__) for m in order}
+        return [futures[m.__name__].result() for m in chapters]
+
+
 @cached
 def reproduction_record():
     """The reproduction record ``{"entries": [...], "figures": {...}, "claims": [...],
     "environment": {...}}``.
 
-    The sum of the chapters' record parts (each chapter's ``record_part()``), in the order of
-    :data:`CHAPTERS`, the claims checklist (:func:`fdsc.paper.claims.claims_checklist`) with its
-    step-halving entry, and the environment. The format is the JSON Schema
+    The sum of the chapters' record parts (each chapter's ``record_part()``, computed by
+    :func:`record_jobs` processes: :func:`chapter_parts`), in the order of :data:`CHAPTERS`,
+    the claims checklist (:func:`fdsc.paper.claims.claims_checklist`) with its step-halving
+    entry, and the environment. The format is the JSON Schema
     ``fdsc/paper/data/record.schema.json``.
 
     Returns
@@ -105,8 +180,8 @@ def reproduction_record():
     """
     with shared_results():  # the chapters and the claims ask for the same runs: compute them once
         part = RecordPart()
-        for chapter in CHAPTERS:
-            part = part + chapter.record_part()
+        for chapter_part in chapter_parts(CHAPTERS, record_jobs()):
+            part = part + chapter_part
         part = part + claims.halving_record()
         checklist = [row.to_dict() for row in claims.claims_checklist()]
     return {"entries": list(part.entries), "figures": dict(part.figures), "claims": checklist,

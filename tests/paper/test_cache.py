@@ -58,3 +58,29 @@ def test_fingerprint_is_stable():
 @pytest.mark.parametrize("value", [1, 1.5, "a", None, True, (1, ("b", 2.0))])
 def test_plain_values(value):
     assert cache._plain((value,))
+
+
+def test_a_value_being_computed_is_waited_for_not_computed_again(monkeypatch, tmp_path):
+    # the second caller arrives while the first computes: it waits for the key's lock and reads
+    # the stored value (without the lock both would compute: calls == 2)
+    import threading
+    import time
+
+    monkeypatch.setenv(CACHE_ENV, str(tmp_path))
+    calls, started = [], threading.Event()
+
+    @cached
+    def slow(x):
+        calls.append(x)
+        started.set()
+        time.sleep(0.3)
+        return [x, x]
+
+    out = {}
+    first = threading.Thread(target=lambda: out.setdefault("a", slow(7)))
+    first.start()
+    started.wait()
+    out["b"] = slow(7)
+    first.join()
+    assert calls == [7]
+    assert out["a"] == out["b"] == [7, 7]

@@ -1,4 +1,5 @@
 import numpy as np
+import pytest
 
 from fdsc.paper.record import FIGURE_IDS, reproduction_record
 from fdsc.paper.verdict import VERDICTS
@@ -62,3 +63,35 @@ def test_lmi_and_peak_agree_in_the_record():
     for g, per_band in rec["sigma_peak"]["recomputed"].items():
         for b, peak in per_band.items():
             assert abs(rec["lemma1_gamma"]["recomputed"][g][b] - peak) <= 1e-4 * peak, (g, b)
+
+
+def test_chapters_on_several_processes_give_the_record_of_one(monkeypatch, tmp_path):
+    # two cheap chapters computed by two fresh processes sharing a results folder equal the same
+    # chapters computed here, one after the other, bit for bit
+    from fdsc.paper import frequency_ranges, inputs
+    from fdsc.paper.cache import CACHE_ENV, shared_results
+    from fdsc.paper.record import chapter_parts
+
+    chapters = (inputs, frequency_ranges)
+    monkeypatch.setenv(CACHE_ENV, str(tmp_path / "parallel"))
+    with shared_results():
+        parallel = chapter_parts(chapters, 2)
+    monkeypatch.setenv(CACHE_ENV, str(tmp_path / "serial"))
+    with shared_results():
+        serial = chapter_parts(chapters, 1)
+    assert [e["id"] for p in parallel for e in p.entries] == [e["id"] for p in serial for e in p.entries]
+    np.testing.assert_equal([(p.entries, p.figures) for p in parallel],
+                            [(p.entries, p.figures) for p in serial])
+    # the worker processes wrote their results into the shared folder
+    assert any((tmp_path / "parallel").glob("fdsc.paper.frequency_ranges.*.pickle"))
+
+
+@pytest.mark.parametrize("value", ["0", "-2", "two", "1.5"])
+def test_record_jobs_refuses_what_is_not_a_process_count(monkeypatch, value):
+    from fdsc.paper.record import JOBS_ENV, record_jobs
+
+    monkeypatch.setenv(JOBS_ENV, value)
+    with pytest.raises(ValueError, match="FDSC_JOBS must be a whole number"):
+        record_jobs()
+    monkeypatch.setenv(JOBS_ENV, "3")
+    assert record_jobs() == 3
