@@ -99,8 +99,8 @@ def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
     r_xi = n + 1 if nt2 == (n + 1) * (n + 2) // 2 else n + 2
     prod = np.empty(nt2)
     xi = np.zeros(r_xi)
-    sc = np.empty(Mt.shape[2])
-    eff = np.empty(Mt.shape[2])
+    sc = np.empty(Mt.shape[1])
+    eff = np.empty(Mt.shape[1])
     plain = rparams[0] == 0.0 and rparams[2] == 0.0 and rparams[3] <= 1.0
     scv = sc[:nm]           # the case's own modes (padded modes of a batch are never chosen)
     effv = eff[:nm]

@@ -20,7 +20,7 @@ SCALAR = LTISystem([[-1.0]], [[1.0]], [[1.0]], [[0.0]])
 
 
 def full_and_stream(modes, d, horizon, dt, **kw):
-    law = {k: kw.pop(k) for k in ("law_bands", "law_Q", "law", "x0") if k in kw}
+    law = {k: kw.pop(k) for k in ("law_bands", "law_Q", "law_weights", "law", "x0") if k in kw}
     old = simulate(modes, d, time_grid(horizon, dt), **law)
     new = simulate_stream(modes, d, horizon, dt, **law, **kw)
     return old, new
@@ -362,3 +362,14 @@ def test_tone_input_matrices_equal_the_particular_solution_step():
         X = np.linalg.solve(1j * w * np.eye(2) - A, B * a)
         expected = X * np.exp(1j * w * dt) - Phi @ X
         assert_allclose(H[0, 0, :, j], expected, rtol=0, atol=1e-13 * np.abs(X).max())
+
+
+def test_more_modes_than_law_products_on_a_scalar_loop():
+    # n = 1: the law's form on ξ = [x; d] has 3 products; 5 modes must still get 5 scores
+    modes = [LTISystem([[-a]], [[1.0]], [[1.0]], [[0.0]]) for a in (0.5, 1.0, 2.0, 4.0, 8.0)]
+    W = [np.diag([c, 1.0 - c]) for c in (0.1, 0.3, 0.5, 0.7, 0.9)]
+    d = Sinusoids([1.0, 0.5], [0.3, 20.0])
+    old, new = full_and_stream(modes, d, 20.0, 1e-3, law_weights=W, x0=[0.2])
+    assert new.time_share.size == 5
+    assert new.switches == old.switch_times.size > 0
+    assert_allclose(new.energy, old.energy(), rtol=1e-9)

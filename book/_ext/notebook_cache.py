@@ -20,7 +20,6 @@ check the key again after executing: if the sources changed meanwhile, the test 
 nothing, and the build fails and deletes its cache folder and its environment (build again).
 """
 
-import contextlib
 import copy
 import functools
 import hashlib
@@ -30,16 +29,13 @@ import shutil
 import time
 from pathlib import Path
 
-try:
-    import fcntl
-except ImportError:        # not POSIX
-    fcntl = None
-
 import nbformat
 from jupyter_cache import get_cache
 from jupyter_cache.base import CacheBundleIn
 from sphinx.application import ENV_PICKLE_FILENAME
 from sphinx.errors import ExtensionError
+
+from fdsc.paper.cache import file_lock
 
 #: The repository: ``fdsc/``, ``requirements.txt`` and ``book/`` are in it.
 ROOT = Path(__file__).resolve().parents[2]
@@ -199,23 +195,6 @@ def store_execution(folder, source, executed, uri, seconds):
     return get_cache(str(folder)).cache_notebook_bundle(bundle, check_validity=False, overwrite=True)
 
 
-@contextlib.contextmanager
-def _store_lock(root):
-    """One writer at a time (the workers of ``pytest -n`` store chapters concurrently): an
-    exclusive ``flock`` on ``book/_build/.jupyter_cache.lock`` (no lock where unavailable)."""
-    if fcntl is None:
-        yield
-        return
-    path = Path(root) / "book" / "_build" / ".jupyter_cache.lock"
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with open(path, "a") as fh:
-        fcntl.flock(fh, fcntl.LOCK_EX)
-        try:
-            yield
-        finally:
-            fcntl.flock(fh, fcntl.LOCK_UN)
-
-
 def caching_execute(execute, root=ROOT, kernel_env=None):
     """Wrap nbmake's ``NotebookRun.execute`` so that every successful execution is cached.
 
@@ -258,7 +237,10 @@ def caching_execute(execute, root=ROOT, kernel_env=None):
         own_kernel = run.kernel in (None, source.metadata.get("kernelspec", {}).get("name"))
         if (result.error is None and not error_outputs(result.nb) and own_kernel
                 and not run.find_import_errors and source_key(root) == key):
-            with _store_lock(root):
+            # one writer at a time: the workers of ``pytest -n`` store chapters concurrently
+            lock = Path(root) / "book" / "_build" / ".jupyter_cache.lock"
+            lock.parent.mkdir(parents=True, exist_ok=True)
+            with file_lock(lock):
                 prune_other_keys(root, key)
                 store_execution(cache_path(root, key), source, result.nb,
                                 str(Path(run.filename).resolve()), seconds)

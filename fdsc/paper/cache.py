@@ -31,7 +31,7 @@ try:
 except ImportError:        # not POSIX: no lock (concurrent processes may compute a value twice)
     fcntl = None
 
-__all__ = ["cached", "fingerprint", "shared_results", "CACHE_ENV"]
+__all__ = ["cached", "fingerprint", "shared_results", "file_lock", "CACHE_ENV"]
 
 #: Environment variable naming the cache folder (unset: no caching).
 CACHE_ENV = "FDSC_CACHE_DIR"
@@ -69,18 +69,24 @@ def fingerprint() -> str:
 
 
 @contextlib.contextmanager
-def _key_lock(path):
-    """Hold an exclusive lock on ``<path>.lock`` (POSIX ``flock``; no lock where unavailable).
+def file_lock(path):
+    """Hold an exclusive POSIX ``flock`` on the file ``path`` (created if missing) in the block.
 
-    Processes that share a cache folder (the workers of ``pytest -n``, the kernels they start)
-    then compute each value once: the others wait and read it. Locks of different keys are
-    independent, and a cached function only calls cached functions of other keys, so waiting
-    cannot deadlock.
+    Without ``fcntl`` (not POSIX) the block runs unlocked. :func:`cached` locks one file per key,
+    so that processes sharing a cache folder (the workers of ``pytest -n``, the kernels they
+    start, the processes of :func:`fdsc.paper.record.chapter_parts`) compute each value once:
+    the others wait and read it. Locks of different keys are independent, and a cached function
+    only calls cached functions of other keys, so waiting cannot deadlock.
+
+    Parameters
+    ----------
+    path : path-like
+        The lock file.
     """
     if fcntl is None:
         yield
         return
-    with open(path.with_name(path.name + ".lock"), "a") as fh:
+    with open(path, "a") as fh:
         fcntl.flock(fh, fcntl.LOCK_EX)
         try:
             yield
@@ -131,12 +137,9 @@ def cached(fn: Callable) -> Callable:
         key = hashlib.sha256(repr((fingerprint(), fn.__module__, fn.__qualname__, args,
                                    sorted(kwargs.items()))).encode()).hexdigest()[:24]
         path = Path(folder) / f"{fn.__module__}.{fn.__qualname__}-{key}.pickle"
-        if path.is_file():
-            with path.open("rb") as fh:
-                return pickle.load(fh)
         path.parent.mkdir(parents=True, exist_ok=True)
-        with _key_lock(path):
-            # another process may have computed it while this one waited for the lock
+        with file_lock(path.with_name(path.name + ".lock")):
+            # stored earlier, or by another process while this one waited for the lock
             if path.is_file():
                 with path.open("rb") as fh:
                     return pickle.load(fh)
