@@ -41,6 +41,12 @@ traces decimated to min/max per bin (plus the share of each mode per bin), which
 fast oscillation faithfully at any plot resolution. A run that keeps no traces needs memory
 independent of its length.
 
+**LTI runs in closed form.** A run of one mode under a Sinusoids or Piecewise disturbance, with
+no traces, has samples in closed form (a transient plus a steady state per piece), and so have
+its Simpson sums: :mod:`fdsc._closed_form` computes them, the coarse grid included, in a time
+independent of the horizon, wherever that keeps the loop's accuracy (else the loop runs; see
+:func:`simulate_stream`, Notes).
+
 **Batch.** :func:`simulate_batch` runs many :class:`Case` s (mode sets, disturbances, laws,
 horizons and steps may all differ) in one compiled call, parallel over cases on
 ``numba.get_num_threads()`` threads; the results come back as arrays (:class:`BatchResult`).
@@ -56,6 +62,7 @@ from numba import njit, prange
 from numpy.typing import ArrayLike
 from scipy.linalg import expm
 
+from . import _closed_form
 from ._validation import as_choice, as_count, as_positive, as_vector, check_type
 from .exceptions import UnstableError, UnstableRunWarning
 from .frequency import check_no_pole_at
@@ -766,12 +773,19 @@ def _tone_arrays(prep, T):
             theta = w * jdt
             R[s, j] = np.cos(theta) + 1j * np.sin(theta)
         for i, Ai in enumerate(prep["A"]):
-            M = np.zeros((n + k, n + k), dtype=complex)
-            M[:n, :n] = Ai
-            M[:n, n:] = np.outer(prep["B"], part.amplitudes)
-            M[n:, n:] = np.diag(1j * part.frequencies)
-            H[s, i, :, :k] = expm(M * dt)[:n, n:]
+            H[s, i, :, :k] = _tone_input(Ai, prep["B"], part, dt)
     return nt, omega, amp, phase, H, R
+
+
+def _tone_input(A, B, part, dt):
+    """H of one mode and one piece: the top-right block of ``expm([[A, B aᵀ], [0, diag(jω)]] Δt)``
+    (see :func:`_tone_arrays`); (n, T) complex."""
+    n, k = A.shape[0], part.frequencies.size
+    M = np.zeros((n + k, n + k), dtype=complex)
+    M[:n, :n] = A
+    M[:n, n:] = np.outer(B, part.amplitudes)
+    M[n:, n:] = np.diag(1j * part.frequencies)
+    return expm(M * dt)[:n, n:]
 
 
 def _law_forms(A, B, W, f):
@@ -884,7 +898,63 @@ _INPUTS = ("N", "dt", "nm", "Phi", "C", "D", "Mt", "law", "sigma0", "x0", "kind"
            "seg_start", "seg_nt", "omega", "amp", "phase", "Gr", "Gi", "Rre", "Rim")
 
 
-def _run(preps, kernel, threads):
+def _run(preps, kernel, threads, closed_form=True):
+    """Results of every prepared case: by the closed form where it applies (if allowed), by the
+    loop otherwise."""
+    closed = [_closed_result(q) if closed_form and _closed_form_applies(q) else None for q in preps]
+    looped = [q for q, c in zip(preps, closed, strict=True) if c is None]
+    rest = iter(_run_loop(looped, kernel, threads) if looped else [])
+    return [next(rest) if c is None else c for c in closed]
+
+
+def _closed_form_applies(pr):
+    return (pr["nm"] == 1 and pr["kind"] == _KIND_SINES and pr["trace_every"] == 0
+            and _closed_form.applies(pr["Phi"][0]))
+
+
+def _closed_result(pr):
+    """The result of an LTI run under pieces of tones from the closed form of its Simpson sums
+    (:mod:`fdsc._closed_form`): the same numbers as the loop's, rounded differently; None if
+    the closed form's terms cancel too much to keep its accuracy."""
+    N, dt, ce = pr["N"], pr["dt"], pr["cum_every"]
+    A, B = pr["A"][0], pr["B"]
+    parts = pr["segments"]
+    H = [None if part is None else _tone_input(A, B, part, dt) for part in parts]
+    grid = np.arange(0, N, ce, dtype=np.int64) if ce else np.zeros(0, dtype=np.int64)
+    if N == 2:
+        ends, points = [], [0, 1]
+    elif N % 2 == 1:
+        ends, points = [N], [0, N - 1]
+    else:
+        ends, points = [N - 2], [0, N - 3, N - 2, N - 1]
+    ends_all = np.concatenate([np.array(ends, dtype=np.int64), grid])
+    points_all = np.concatenate([np.array(points, dtype=np.int64), grid])
+    G, f, x_last, mag = _closed_form.simpson_sums(pr["Phi"][0], pr["C"][0], pr["D"], pr["x0"],
+                                                  pr["seg_start"], parts, H, dt, ends_all, points_all)
+    if not np.all(mag <= _closed_form.MAX_CANCELLATION * np.abs(G[0, 0])):
+        return None     # its terms cancel: digits would be lost, run the loop
+    # Simpson's weighted sum Σ_{k<K} w_k f_k (w = 1, 4, 2, 4, …) = 3 G₊ − G₋ − f₀
+    W = 3.0 * G[:, 0, :] - G[:, 1, :] - f[:, :1]
+    if N == 2:
+        total = dt * (f[:, 0] + f[:, 1]) / 2.0
+    elif N % 2 == 1:
+        total = dt / 3.0 * (W[:, 0] - f[:, 1])
+    else:
+        total = dt / 3.0 * (W[:, 0] + f[:, 2]) + dt * (5.0 * f[:, 3] + 8.0 * f[:, 2] - f[:, 1]) / 12.0
+    t_cum = grid * dt
+    cum = np.zeros((2, grid.size))
+    if grid.size:
+        cum[:, 1:] = dt / 3.0 * (W[:, len(ends) + 1:] + f[:, len(points) + 1:])
+    edges = pr["dwell_edges"].astype(float) * dt
+    return StreamResult(
+        horizon=pr["horizon"], dt=dt, energy=float(total[0]), input_energy=float(total[1]),
+        switches=0, time_share=np.ones(1), dwell_edges=edges,
+        dwell_counts=np.zeros(edges.size - 1, dtype=np.int64),
+        x_final=x_last, sigma_final=0, t_cum=t_cum, energy_cum=cum[0], input_energy_cum=cum[1],
+        trace=None, diverged_at=None)
+
+
+def _run_loop(preps, kernel, threads):
     st, dims = _stack(preps)
     Cn, n, p, nm, nb = len(preps), dims["n"], dims["p"], dims["nm"], dims["nb"]
     q = n + p + 1
@@ -980,7 +1050,8 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
                     law_Q: list | None = None, law: str = "previous", sigma0: int = 0,
                     rule: SwitchRule = PRINTED, law_weights: list | None = None,
                     cumulative_every: float | None = None, trace_every: float | None = None,
-                    dwell_edges: ArrayLike | None = None, kernel: str = "numba") -> StreamResult:
+                    dwell_edges: ArrayLike | None = None, kernel: str = "numba",
+                    closed_form: bool = True) -> StreamResult:
     """Simulate one LTI or switched loop on ``0, dt, …, horizon`` and return its reductions.
 
     The same exact step and the same sampled switching law (paper eq. (31)) as
@@ -1021,6 +1092,9 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
         steps, up to beyond the horizon); dwells longer than the last edge are not counted.
     kernel : {"numba", "python"}, optional
         The compiled loop or the same loop in the interpreter (slow; for tests).
+    closed_form : bool, optional
+        Sum an LTI run (one mode) under a Sinusoids or Piecewise disturbance, with no traces,
+        in closed form instead of stepping through it (default True; see Notes).
 
     Returns
     -------
@@ -1046,6 +1120,18 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
     UnstableRunWarning
         If a mode that is not Hurwitz is active but the run stayed finite.
 
+    Notes
+    -----
+    The samples of an LTI run under tones are a transient plus a steady state in closed form,
+    so the same Simpson sums (total and coarse grid) and the state at the end are computed
+    without the loop, in a time independent of the horizon (:mod:`fdsc._closed_form`). It is
+    used only where it keeps the loop's accuracy: the step Φ = e^{AΔt} has spectral radius
+    ≤ 1 − 1e-6, and the closed form's terms are at most 30 times its sums (not so for a large
+    steady state against the transient of a slow pole over a short run, or for a stiff loop in
+    badly scaled coordinates); otherwise, and for ``closed_form=False``, the run goes through
+    the loop. Where it is kept it agrees with the loop to a few 1e-11 relative or better
+    (random loops with poles from 1e-3 to 5e5 rad/s; the paper's loops: about 1e-13).
+
     Examples
     --------
     >>> from fdsc import LTISystem, Sinusoids
@@ -1057,10 +1143,11 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
     (0, array([1.]))
     """
     as_choice("kernel", kernel, STREAM_KERNELS)
+    check_type("closed_form", closed_form, (bool, np.bool_), "True or False")
     case = Case(modes, d, horizon, dt, x0=x0, law_bands=law_bands, law_Q=law_Q, law=law,
                 sigma0=sigma0, rule=rule, law_weights=law_weights)
     pr = _prepare(case, "", cumulative_every, trace_every, dwell_edges)
-    (res,) = _run([pr], kernel, 1)
+    (res,) = _run([pr], kernel, 1, closed_form)
     if res.diverged_at is not None:
         raise UnstableError(f"simulate_stream: the state overflowed at t = {res.diverged_at:g} s; "
                             "the loop diverges and no finite energy summarizes it")
@@ -1070,7 +1157,7 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
 
 def simulate_batch(cases, *, cumulative_every: float | None = None, trace_every: float | None = None,
                    dwell_edges: ArrayLike | None = None, threads: int | None = None,
-                   kernel: str = "numba") -> BatchResult:
+                   kernel: str = "numba", closed_form: bool = True) -> BatchResult:
     """Run many :class:`Case` s in one compiled call, in parallel over cases.
 
     Parameters
@@ -1084,6 +1171,9 @@ def simulate_batch(cases, *, cumulative_every: float | None = None, trace_every:
         ``numba.config.NUMBA_NUM_THREADS``).
     kernel : {"numba", "python"}, optional
         The compiled loop (parallel) or the same loop in the interpreter (sequential).
+    closed_form : bool, optional
+        LTI cases under tones without traces in closed form (default True; see
+        :func:`simulate_stream`).
 
     Returns
     -------
@@ -1111,6 +1201,7 @@ def simulate_batch(cases, *, cumulative_every: float | None = None, trace_every:
     array([0.801, 0.201])
     """
     as_choice("kernel", kernel, STREAM_KERNELS)
+    check_type("closed_form", closed_form, (bool, np.bool_), "True or False")
     if isinstance(cases, Case) or not hasattr(cases, "__iter__"):
         raise TypeError(f"cases must be a sequence of Case, found {type(cases).__name__}")
     cases = list(cases)
@@ -1120,7 +1211,7 @@ def simulate_batch(cases, *, cumulative_every: float | None = None, trace_every:
     threads = min(threads, numba.config.NUMBA_NUM_THREADS)
     preps = [_prepare(c, f"cases[{i}]: ", cumulative_every, trace_every, dwell_edges)
              for i, c in enumerate(cases)]
-    results = _run(preps, kernel, threads)
+    results = _run(preps, kernel, threads, closed_form)
     batch = BatchResult(cases, results)
     if batch.diverged.any():
         bad = np.flatnonzero(batch.diverged)
