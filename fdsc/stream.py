@@ -130,6 +130,9 @@ def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
     prev = sigma0
     switches = 0
     dwell_start = 0
+    share_start = 0     # first point of the current mode (steps per mode: counted at switches)
+    k_done = 0
+    cum_next = 0 if cum_every > 0 else -1
     n_edges = dwell_edges.shape[0]
     # Simpson sums (weights 1, 4, 2, 4, …) with Neumaier compensation, and the last two samples
     sz = 0.0
@@ -150,6 +153,7 @@ def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
     wgt = 1.0
     diverged = -1
     for k in range(N):
+        k_done = k
         if kind == 0 and k == seg_start[s + 1]:
             s += 1
             kb = k
@@ -218,10 +222,10 @@ def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
                             dwell_counts[e] += 1
                             break
                 dwell_start = k
+                share_steps[prev] += k - share_start
+                share_start = k
             prev = choice
         m = prev
-        if k < N - 1:
-            share_steps[m] += 1
         # output and integrands at point k
         fz = 0.0
         if trace_every > 0:
@@ -252,7 +256,8 @@ def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
                 tr_lo[b, n + p] = dk
             if first or dk > tr_hi[b, n + p]:
                 tr_hi[b, n + p] = dk
-        if cum_every > 0 and k % cum_every == 0:
+        if k == cum_next:
+            cum_next += cum_every
             row_ = k // cum_every
             if k == 0:
                 cum[row_, 0] = 0.0
@@ -325,6 +330,8 @@ def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
                 xn[r] = acc
         for r in range(n):
             x[r] = xn[r]
+    # steps 0 … min(last point, N − 2) in the last mode
+    share_steps[prev] += min(k_done, N - 2) + 1 - share_start
     # totals by scipy.integrate.simpson's rule for N equally spaced points
     if diverged >= 0:
         sums[0] = np.inf
