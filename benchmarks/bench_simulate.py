@@ -15,11 +15,16 @@ measured in the same run:
   exact methods against it (equal accuracy: all at the 1e-12 level or better);
 * **batch**: a ρ_p sweep as in paper Fig. 7 (21 values of ρ_p in [0, 0.5]; the four printed
   gains K_e, K_f1, K_f2, K_f3 and FDSC; 500 s at 1 ms: 105 runs, 5.25e7 steps) in one call of
-  ``fdsc.simulate_batch`` on every core, against the same cases run one by one;
+  ``fdsc.simulate_batch`` on every core, against the same cases run one by one; the fixed-gain
+  runs are summed in closed form by default, so the sweep is also timed with every run through
+  the loop (``closed_form=False``), with the largest energy difference between the two;
+* **LTI runs**: one 500 s fixed-gain run in closed form against the loop (time ratio), and an
+  LTI output energy against its exact value, by the loop and by the closed form;
 * **memory**: peak resident memory of a 1e8-step reduction-only run, measured in a fresh
-  process; its baseline after imports and compilation (numba's LLVM, SciPy, CVXPY: the same for a
-  run of one step) is reported beside it, and ``run_mb_1e8`` is the run's own growth;
-* the relative error of an LTI output energy against its closed form.
+  process that imports what a simulation needs (``fdsc`` loads its modules on first use: NumPy,
+  SciPy's linalg and numba with its LLVM, not CVXPY); its baseline after imports and
+  compilation (the same for a run of one step) is reported beside it, and ``run_mb_1e8`` is the
+  run's own growth.
 
 The last line printed is JSON with ``switched_steps_per_s``, ``speedup_vs_solve_ivp``,
 ``lti_energy_rel_err``, ``end_to_end_steps_per_s``, ``sweep_seconds`` and ``peak_mb_1e8``.
@@ -149,6 +154,16 @@ def main():
     serial_seconds = time.perf_counter() - t0
     assert all(a.energy == b.energy for a, b in zip(batch, one_by_one, strict=True))
     sweep_steps = sum(round(c.horizon / c.dt) for c in cases)
+    t0 = time.perf_counter()
+    looped = simulate_batch(cases, closed_form=False)
+    sweep_loop_seconds = time.perf_counter() - t0
+    closed_vs_loop = float(np.max(np.abs(batch.energy - looped.energy) / looped.energy))
+
+    # one fixed-gain run of 500 s: closed form against the loop
+    fixed = cases[0]
+    t_closed = best_of(lambda: simulate_stream(fixed.modes, fixed.d, fixed.horizon, fixed.dt))
+    t_loop = best_of(lambda: simulate_stream(fixed.modes, fixed.d, fixed.horizon, fixed.dt,
+                                             closed_form=False))
 
     # memory of a reduction-only run of 1e8 steps (and 1e6 steps for the baseline), fresh processes
     mem = {}
@@ -162,7 +177,8 @@ def main():
     T = 2 * np.pi * 200
     tone = Sinusoids([1.0], [w])
     xp, _ = particular(sys_.A, sys_.B, tone, [0.0])
-    e = simulate_stream(sys_, tone, T, T / 400_000, x0=xp[0]).energy
+    e = simulate_stream(sys_, tone, T, T / 400_000, x0=xp[0], closed_form=False).energy
+    e_closed = simulate_stream(sys_, tone, T, T / 400_000, x0=xp[0]).energy
     exact = abs(1 / (1j * w + 2)) ** 2 * T / 2
 
     result = {
@@ -189,6 +205,11 @@ def main():
         "sweep_parallel_speedup": serial_seconds / sweep_seconds,
         "sweep_cases_per_s": len(cases) / sweep_seconds,
         "sweep_steps_per_s": sweep_steps / sweep_seconds,
+        "sweep_loop_only_seconds": sweep_loop_seconds,
+        "sweep_closed_form_speedup": sweep_loop_seconds / sweep_seconds,
+        "sweep_energy_rel_diff_closed_form_vs_loop": closed_vs_loop,
+        "lti_run_500s_closed_form_seconds": t_closed,
+        "lti_run_500s_loop_seconds": t_loop,
         "threads": numba.get_num_threads(),
         "peak_mb_1e8": mem[10**8][1] if mem else None,
         "baseline_mb_after_imports": mem[10**8][0] if mem else None,
@@ -196,6 +217,7 @@ def main():
         "peak_mb_1e6": mem[10**6][1] if mem else None,
         "seconds_1e8": mem[10**8][2] if mem else None,
         "lti_energy_rel_err": abs(e - exact) / exact,
+        "lti_energy_rel_err_closed_form": abs(e_closed - exact) / exact,
         "horizon_s": horizon, "dt_s": DT, "steps": steps, "cpu_count": os.cpu_count(),
     }
     for k, v in result.items():

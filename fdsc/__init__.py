@@ -13,55 +13,139 @@ FD-EPF paper eqs. (19)-(20) and (28)-(29), the switching law paper eq. (31) and 
 eqs. (33)-(34). Frequencies are in rad/s, times in s.
 """
 
-from .bands import PHI, Band, band_from_spec
-from .design import FDSC
-from .dwell import (
-    DwellCheck,
-    DwellTimeBound,
-    LyapunovDwell,
-    PeriodicDwellMargin,
-    check_dwell_bound,
-    dwell_time_bound,
-    lyapunov_dwell,
-    periodic_dwell_margin,
-    random_dwell_signal,
-    switched_states,
-)
-from .energy import (
-    PowerSplit,
-    average_power,
-    fdeef,
-    fdeef_autonomous,
-    fdeef_parseval_autonomous,
-    instantaneous_power,
-    steady_state_power,
-)
-from .exceptions import (
-    BandError,
-    DimensionError,
-    FdscError,
-    InfeasibleError,
-    IterationLimitError,
-    MemoryLimitError,
-    SingularFrequencyError,
-    SolverError,
-    UnstableError,
-    UnstableRunWarning,
-    VerificationError,
-)
-from .frequency import BandPeak, band_peak, freqresp, sigma_max, steady_state_gain
-from .lmi import GKYPResult, gkyp_certify, gkyp_gamma
-from .lyapunov_jumps import SwitchingCertificate, certify_switching, certify_switching_gain, switching_forms
-from .plant import LTISystem, Plant, as_plant, as_system
-from .random_systems import random_hurwitz, random_plant, random_spd, random_system
-from .rules import PRINTED, SwitchRule
-from .scores import frequency_weight, law_weight, score_average, score_matrix
-from .signals import LocalizedDominance, Piecewise, Sampled, Sinusoids, dominance_degree, localized_dominance
-from .simulate import SimResult, envelope, simulate, time_grid
-from .stream import BatchResult, Case, StreamResult, Trace, simulate_batch, simulate_stream
-from .switching import Theorem1Result, certify_q, design_q
-from .synthesis import SynthesisResult, optimize_gain, synthesize, synthesize_hinf
-from .three_mode import ScoreCertificate, certify_scores, design_scores
+import importlib
+import sys
+import types
+from typing import TYPE_CHECKING
+
+#: Where each public name lives. The submodules are imported on first use (PEP 562), so that a
+#: program that only simulates does not load CVXPY and its solvers (``import fdsc`` alone loads
+#: NumPy only; ``fdsc.simulate_stream`` loads SciPy and numba, ``fdsc.synthesize`` CVXPY).
+_EXPORTS = {
+    "bands": ("PHI", "Band", "band_from_spec"),
+    "design": ("FDSC",),
+    "dwell": ("DwellCheck", "DwellTimeBound", "LyapunovDwell", "PeriodicDwellMargin",
+              "check_dwell_bound", "dwell_time_bound", "lyapunov_dwell", "periodic_dwell_margin",
+              "random_dwell_signal", "switched_states"),
+    "energy": ("PowerSplit", "average_power", "fdeef", "fdeef_autonomous", "fdeef_parseval_autonomous",
+               "instantaneous_power", "steady_state_power"),
+    "exceptions": ("BandError", "DimensionError", "FdscError", "InfeasibleError", "IterationLimitError",
+                   "MemoryLimitError", "SingularFrequencyError", "SolverError", "UnstableError",
+                   "UnstableRunWarning", "VerificationError"),
+    "frequency": ("BandPeak", "band_peak", "freqresp", "sigma_max", "steady_state_gain"),
+    "lmi": ("GKYPResult", "gkyp_certify", "gkyp_gamma"),
+    "lyapunov_jumps": ("SwitchingCertificate", "certify_switching", "certify_switching_gain",
+                       "switching_forms"),
+    "plant": ("LTISystem", "Plant", "as_plant", "as_system"),
+    "random_systems": ("random_hurwitz", "random_plant", "random_spd", "random_system"),
+    "rules": ("PRINTED", "SwitchRule"),
+    "scores": ("frequency_weight", "law_weight", "score_average", "score_matrix"),
+    "signals": ("LocalizedDominance", "Piecewise", "Sampled", "Sinusoids", "dominance_degree",
+                "localized_dominance"),
+    "simulate": ("SimResult", "envelope", "simulate", "time_grid"),
+    "stream": ("BatchResult", "Case", "StreamResult", "Trace", "simulate_batch", "simulate_stream"),
+    "switching": ("Theorem1Result", "certify_q", "design_q"),
+    "synthesis": ("SynthesisResult", "optimize_gain", "synthesize", "synthesize_hinf"),
+    "three_mode": ("ScoreCertificate", "certify_scores", "design_scores"),
+}
+_WHERE = {name: module for module, names in _EXPORTS.items() for name in names}
+
+
+def __getattr__(name):
+    """Import the submodule that defines ``name`` (or the submodule ``name``) on first use."""
+    module = _WHERE.get(name)
+    if module is not None:
+        value = getattr(importlib.import_module(f".{module}", __name__), name)
+        globals()[name] = value
+        return value
+    try:
+        return importlib.import_module(f".{name}", __name__)
+    except ModuleNotFoundError as err:
+        if err.name != f"{__name__}.{name}":
+            raise
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}") from None
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_WHERE))
+
+
+class _Package(types.ModuleType):
+    """The package's module type: importing the submodule ``fdsc.simulate`` must not replace the
+    function ``fdsc.simulate`` (the import system sets a package attribute for every submodule
+    it loads; with eager imports the function was bound afterwards, with lazy ones it is not)."""
+
+    def __setattr__(self, name, value):
+        if name in _WHERE and isinstance(value, types.ModuleType):
+            return
+        super().__setattr__(name, value)
+
+
+sys.modules[__name__].__class__ = _Package
+
+
+if TYPE_CHECKING:  # what the lazy names are, for type checkers and editors
+    from .bands import PHI, Band, band_from_spec
+    from .design import FDSC
+    from .dwell import (
+        DwellCheck,
+        DwellTimeBound,
+        LyapunovDwell,
+        PeriodicDwellMargin,
+        check_dwell_bound,
+        dwell_time_bound,
+        lyapunov_dwell,
+        periodic_dwell_margin,
+        random_dwell_signal,
+        switched_states,
+    )
+    from .energy import (
+        PowerSplit,
+        average_power,
+        fdeef,
+        fdeef_autonomous,
+        fdeef_parseval_autonomous,
+        instantaneous_power,
+        steady_state_power,
+    )
+    from .exceptions import (
+        BandError,
+        DimensionError,
+        FdscError,
+        InfeasibleError,
+        IterationLimitError,
+        MemoryLimitError,
+        SingularFrequencyError,
+        SolverError,
+        UnstableError,
+        UnstableRunWarning,
+        VerificationError,
+    )
+    from .frequency import BandPeak, band_peak, freqresp, sigma_max, steady_state_gain
+    from .lmi import GKYPResult, gkyp_certify, gkyp_gamma
+    from .lyapunov_jumps import (
+        SwitchingCertificate,
+        certify_switching,
+        certify_switching_gain,
+        switching_forms,
+    )
+    from .plant import LTISystem, Plant, as_plant, as_system
+    from .random_systems import random_hurwitz, random_plant, random_spd, random_system
+    from .rules import PRINTED, SwitchRule
+    from .scores import frequency_weight, law_weight, score_average, score_matrix
+    from .signals import (
+        LocalizedDominance,
+        Piecewise,
+        Sampled,
+        Sinusoids,
+        dominance_degree,
+        localized_dominance,
+    )
+    from .simulate import SimResult, envelope, simulate, time_grid
+    from .stream import BatchResult, Case, StreamResult, Trace, simulate_batch, simulate_stream
+    from .switching import Theorem1Result, certify_q, design_q
+    from .synthesis import SynthesisResult, optimize_gain, synthesize, synthesize_hinf
+    from .three_mode import ScoreCertificate, certify_scores, design_scores
 
 __version__ = "0.2.0"
 

@@ -16,7 +16,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.integrate import quad, simpson
 from scipy.linalg import solve_continuous_lyapunov
 
 from ._validation import as_matrix, as_vector, check_hurwitz, check_type
@@ -184,6 +183,8 @@ def fdeef(t: ArrayLike, x: ArrayLike, xdot: ArrayLike, band: Band, Q: ArrayLike)
     p = instantaneous_power(x, xdot, band, Q)
     if p.size != t.size:
         raise DimensionError(f"t has {t.size} samples but x has {p.size} rows")
+    from scipy.integrate import simpson  # here: a simulation needs no scipy.integrate
+
     return float(simpson(p, x=t))
 
 
@@ -431,6 +432,8 @@ def fdeef_parseval_autonomous(sys: LTISystem, x0: ArrayLike, band: Band, Q: Arra
     Q = check_weight(Q, A.shape[0])
     n = A.shape[0]
     p = _band(band)
+
+    from scipy.integrate import quad  # here: a simulation needs no scipy.integrate
 
     def integrand(w):
         X = np.linalg.solve(1j * w * np.eye(n) - A, x0)

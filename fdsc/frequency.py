@@ -15,7 +15,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.optimize import minimize_scalar
 
 from ._validation import as_count, as_positive, as_vector, check_hurwitz, check_type
 from .bands import Band
@@ -289,6 +288,8 @@ def _refine(sys, w, s, xtol, n_candidates=4):
             chosen.append(i)
         if len(chosen) == n_candidates:
             break
+    from scipy.optimize import minimize_scalar  # here: a simulation needs no scipy.optimize
+
     best_w, best_s = float(w[idx[0]]), float(s[idx[0]])
     for i in chosen:
         a, b = w[max(i - 1, 0)], w[min(i + 1, w.size - 1)]

@@ -14,7 +14,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.signal import ShortTimeFFT, get_window
 
 from ._validation import as_choice, as_finite_real, as_positive, as_vector, check_type
 from .bands import Band
@@ -473,6 +472,8 @@ def dominance_degree(x: ArrayLike, dt: float, band: Band, *, window: str = "hann
     0.8
     """
     x, dt = _record(x, dt)
+    from scipy.signal import get_window  # here: a simulation needs no scipy.signal
+
     win = get_window(window, x.size, fftbins=False)
     X = np.fft.rfft(x * win)
     w = 2 * np.pi * np.fft.rfftfreq(x.size, dt)
@@ -559,6 +560,8 @@ def localized_dominance(x: ArrayLike, dt: float, band: Band, *, window_length: f
     if nwin < 8 or nwin > x.size:
         raise ValueError(f"window_length must span between 8 samples and the record "
                          f"({x.size * dt:g} s), found {window_length:g} s")
+    from scipy.signal import ShortTimeFFT, get_window
+
     sft = ShortTimeFFT(get_window(window, nwin, fftbins=False), hop=nhop, fs=1.0 / dt,
                        fft_mode="onesided")
     p0 = sft.lower_border_end[1]

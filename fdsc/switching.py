@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import cvxpy as cp
 import numpy as np
 
+from . import _defaults
 from ._validation import as_count, as_positive, check_hurwitz
 from .bands import Band
 from .energy import check_weight
@@ -32,7 +33,7 @@ from .plant import LTISystem, as_system
 __all__ = ["Theorem1Result", "theorem1_matrices", "certify_q", "design_q", "DEFAULT_GAMMA_TOL"]
 
 #: γ_tol of paper Remark 4 used by default (not printed in the paper; the book shows the sensitivity).
-DEFAULT_GAMMA_TOL = 10.0
+DEFAULT_GAMMA_TOL = _defaults.DEFAULT_GAMMA_TOL
 
 
 @dataclass(frozen=True)

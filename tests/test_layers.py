@@ -1,6 +1,7 @@
 """The two layers: the library ``fdsc`` never imports ``fdsc.paper`` and holds no number of the paper."""
 
 import ast
+import importlib
 import json
 import subprocess
 import sys
@@ -87,6 +88,33 @@ def test_importing_the_whole_library_loads_nothing_of_the_paper_layer():
             "print(sorted(k for k in sys.modules if k.startswith('fdsc.paper')))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"
+
+
+def test_a_simulation_loads_neither_cvxpy_nor_the_scipy_it_does_not_use():
+    # fdsc's names are imported on first use: simulating the paper's loops (the benchmark's
+    # memory run) must not load CVXPY, its solvers or scipy.signal/optimize/integrate
+    heavy = ("cvxpy", "clarabel", "control", "matplotlib", "scipy.signal", "scipy.optimize",
+             "scipy.integrate")
+    code = ("import sys, fdsc\n"
+            "from fdsc import Sinusoids, simulate_stream\n"
+            "from fdsc.paper.data import paper_modes\n"
+            "pm = paper_modes()\n"
+            "r = simulate_stream(pm['modes'], Sinusoids([1.0], [2.0]), 0.1, 1e-3, law_bands=pm['bands'], "
+            "law_Q=pm['Q'])\n"
+            f"print(sorted(m for m in {heavy!r} if m in sys.modules))\n"
+            "fdsc.synthesize\n"
+            "print('cvxpy' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.split("\n")[:2] == ["[]", "True"]
+
+
+def test_every_public_name_resolves_and_unknown_names_raise():
+    for name in fdsc.__all__:
+        assert getattr(fdsc, name) is getattr(importlib.import_module("fdsc." + fdsc._WHERE[name]), name)
+    assert set(fdsc.__all__) <= set(dir(fdsc)) and set(fdsc.__all__) == set(fdsc._WHERE)
+    assert fdsc.stream.simulate_stream is fdsc.simulate_stream
+    with pytest.raises(AttributeError, match="module 'fdsc' has no attribute 'no_such_name'"):
+        getattr(fdsc, "no_such_name")  # noqa: B009 (the attribute access is what is tested)
 
 
 def test_the_command_line_finds_the_paper_command_through_entry_points():

@@ -7,13 +7,12 @@ from importlib import resources
 
 import numpy as np
 
+from .._defaults import DEFAULT_GAMMA_TOL
 from .._validation import as_choice, as_finite_real, as_positive
 from ..bands import band_from_spec
-from ..design import FDSC
 from ..plant import Plant
 from ..signals import Piecewise, Sinusoids
 from ..simulate import simulate
-from ..switching import DEFAULT_GAMMA_TOL
 from .names import CONTROLLER_GAINS, CONTROLLERS, FDSC_IN_BAND
 
 __all__ = [
@@ -279,6 +278,8 @@ def paper_fdsc(Q=None, *, gamma_tol=DEFAULT_GAMMA_TOL):
     if isinstance(Q, str):
         as_choice("Q", Q, ("paper",))
         Q = paper_modes()["Q"]
+    from ..design import FDSC  # imported here: loading the paper's data needs no CVXPY
+
     return FDSC.from_gains(aircraft(), [gains[k] for k in sw["modes"]["value"]],
                            [bands[b] for b in sw["mode_bands"]["value"]], FDSC_IN_BAND, Q=Q,
                            gamma_tol=gamma_tol)
