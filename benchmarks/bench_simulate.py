@@ -20,11 +20,12 @@ measured in the same run:
   the loop (``closed_form=False``), with the largest energy difference between the two;
 * **LTI runs**: one 500 s fixed-gain run in closed form against the loop (time ratio), and an
   LTI output energy against its exact value, by the loop and by the closed form;
-* **memory**: peak resident memory of a 1e8-step reduction-only run, measured in a fresh
-  process that imports what a simulation needs (``fdsc`` loads its modules on first use: NumPy,
+* **memory**: peak resident memory (``VmHWM``) of a 1e8-step reduction-only run, measured in a
+  fresh process that imports what a simulation needs (``fdsc`` loads its modules on first use: NumPy,
   SciPy's linalg and numba with its LLVM, not CVXPY); its baseline after imports and
   compilation (the same for a run of one step) is reported beside it, and ``run_mb_1e8`` is the
-  run's own growth.
+  run's own growth. A first fresh process before them fills numba's disk cache if it was stale
+  (compiling costs about 150 MB of LLVM memory once); its peak is reported too.
 
 The last line printed is JSON with ``switched_steps_per_s``, ``speedup_vs_solve_ivp``,
 ``lti_energy_rel_err``, ``end_to_end_steps_per_s``, ``sweep_seconds`` and ``peak_mb_1e8``.
@@ -83,17 +84,22 @@ def sweep_cases(horizon=500.0):
 
 
 MEMORY_SCRIPT = """
-import resource, sys, time
+import sys, time
+def peak_mb():
+    # VmHWM: the peak resident memory of this process's own address space (ru_maxrss is not:
+    # Linux carries it over exec from the forked copy of the parent that started this process)
+    with open("/proc/self/status") as f:
+        return next(int(line.split()[1]) for line in f if line.startswith("VmHWM:")) / 1024
 from fdsc import simulate_stream
 from fdsc.paper.data import mixed_disturbance, paper_modes
 pm, d = paper_modes(), mixed_disturbance(0.1)
 kw = dict(law_bands=pm["bands"], law_Q=pm["Q"])
 simulate_stream(pm["modes"], d, 1.0, 1e-3, **kw)
-base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+base = peak_mb()
 t0 = time.perf_counter()
 run = simulate_stream(pm["modes"], d, float(sys.argv[1]), 1e-3, **kw)
 seconds = time.perf_counter() - t0
-peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+peak = peak_mb()
 print(base, peak, seconds, run.switches)
 """
 
@@ -165,9 +171,12 @@ def main():
     t_loop = best_of(lambda: simulate_stream(fixed.modes, fixed.d, fixed.horizon, fixed.dt,
                                              closed_form=False))
 
-    # memory of a reduction-only run of 1e8 steps (and 1e6 steps for the baseline), fresh processes
+    # memory of a reduction-only run of 1e8 steps (and 1e6 steps for the baseline), fresh processes;
+    # the first one loads the kernels from numba's disk cache if it holds them, or compiles them
+    # (LLVM's memory counts then): reported apart, and the runs measured after it load them
     mem = {}
     if not quick:
+        first = memory_run(1)
         for n in (10**6, 10**8):
             mem[n] = memory_run(n)
 
@@ -215,6 +224,7 @@ def main():
         "baseline_mb_after_imports": mem[10**8][0] if mem else None,
         "run_mb_1e8": mem[10**8][1] - mem[10**8][0] if mem else None,
         "peak_mb_1e6": mem[10**6][1] if mem else None,
+        "peak_mb_first_process": first[1] if mem else None,
         "seconds_1e8": mem[10**8][2] if mem else None,
         "lti_energy_rel_err": abs(e - exact) / exact,
         "lti_energy_rel_err_closed_form": abs(e_closed - exact) / exact,
