@@ -21,7 +21,7 @@ sum is a combination of ``G_c = Σ_k c^k f_k`` for ``c = ±1``, and each of the 
 * cross terms: ``Σ_{m<L} ρ^m Φ^m e = (I − ρΦ)⁻¹ (e − ρ^L Φ^L e)`` with ``ρ = c e^{jθ_j}``;
 * tones: products ``P̄_j P_l`` and ``P_j P_l`` are geometric in k, summed as
   ``(r^{k₀} − r^{b}) / (1 − r)``, or as ``e^{jα(k₀+b−1)/2} sin(αL/2) / sin(α/2)`` when ``r = e^{jα}``
-  is near 1 (no cancellation), and ``L`` when ``r = 1``.
+  is near 1 and ``|α| L < 1`` (where the first form would cancel), and ``L`` when ``r = 1``.
 
 This needs Φ Schur-stable (spectral radius < 1, checked with a margin by
 :func:`applies`), no tone at a pole (refused before), and costs O(T² + n³) per piece and per
@@ -46,7 +46,8 @@ RADIUS_MARGIN = 1e-6
 MAX_CANCELLATION = 30.0
 # Smith's doubling: 2^64 terms, far more than any Φ with spectral radius ≤ 1 − 1e-6 needs
 _MAX_DOUBLINGS = 64
-# |1 − r| below which a geometric sum is evaluated with the sine form (no cancellation)
+# |α| below which a ratio r = e^{jα} counts as near 1: its geometric sums take the sine form at
+# the ends where |α| L < 1 (where (q(k0) − q(b)) / (1 − r) would cancel)
 _NEAR_ONE = 1e-3
 
 
@@ -89,32 +90,52 @@ def _powers(Phi, e, L):
     return out
 
 
-def _pair_sums(weight, ratio, start, end_terms, L):
+def _pair_sums(weight, ratio, start, end_terms, pair_end, L):
     """For every end b = k0 + L: ``Σ_{k=k0}^{b−1} Σ_{jl} weight_jl q_jl(k)``, each ``q_jl``
     geometric with ratio ``ratio_jl`` (|ratio| = 1) and ``q_jl(k0) = start_jl``;
-    ``end_terms(M)`` returns ``Σ_jl M_jl q_jl(b)`` for every b. Also returns the size of the
-    terms that were added (for the cancellation check)."""
-    far = np.abs(1 - ratio) >= _NEAR_ONE
+    ``end_terms(M)`` returns ``Σ_jl M_jl q_jl(b)`` for every b, ``pair_end(jj, ll)`` the
+    ``q_jl(b)`` of the pairs (jj[i], ll[i]), (len(j), nb). Also returns the size of the terms that were
+    added (for the cancellation check).
+
+    Per pair, ``Σ_{m<L} r^m`` is ``L`` if r = 1, ``(1 − r^L) / (1 − r)`` as
+    ``(q(k0) − q(b)) / (1 − r)`` where that does not cancel, and
+    ``e^{jα(L−1)/2} sin(αL/2) / sin(α/2)`` (r = e^{jα}) where it would: for a ratio near 1
+    (|α| < :data:`_NEAR_ONE`) at ends with |α| L < 1. 1 − r is formed from α without
+    cancellation."""
+    alpha = np.angle(ratio)
+    one = ratio == 1.0
+    near = (np.abs(alpha) < _NEAR_ONE) & ~one
+    far = ~near & ~one
     total = np.zeros(L.size, dtype=complex)
     size = np.zeros(L.size)
+    # 1 − e^{jα} = 2 sin²(α/2) − j sin α
+    om = 2.0 * np.sin(alpha / 2) ** 2 - 1j * np.sin(alpha)
     if np.any(far):
-        # (q(k0) − q(b)) / (1 − r)
-        M = np.where(far, weight / np.where(far, 1 - ratio, 1.0), 0.0)
+        M = np.where(far, weight / np.where(far, om, 1.0), 0.0)
         total += np.sum(M * start) - end_terms(M)
         size += 2.0 * np.sum(np.abs(M))
-    one = ratio == 1.0
     if np.any(one):
         # ratio exactly 1 (equal frequencies): L equal terms
         total += np.sum(weight[one] * start[one]) * L
-    near = ~far & ~one
-    size += np.sum(np.abs(weight[~far])) * L
+        size += np.sum(np.abs(weight[one])) * L
     if np.any(near):
-        # ratio e^{jα} near 1: Σ_{m<L} e^{jαm} = e^{jα(L−1)/2} sin(αL/2) / sin(α/2) (= L at α = 0)
-        alpha = np.angle(ratio[near])[:, None]
-        half = np.sin(alpha / 2)
+        jj, ll = np.nonzero(near)
+        a = alpha[jj, ll][:, None]
+        w = weight[jj, ll][:, None]
+        ws = (weight[jj, ll] * start[jj, ll])[:, None]
         Lf = L.astype(float)[None, :]
-        geo = np.sin(alpha * Lf / 2) / half * np.exp(0.5j * alpha * (Lf - 1))
-        total += np.sum((weight[near] * start[near])[:, None] * geo, axis=0)
+        short = np.abs(a) * Lf < 1.0
+        # far form per pair: w (q(k0) − q(b)) / (1 − r), where it does not cancel
+        Mn = w / om[jj, ll][:, None]
+        terms = np.where(short, 0.0, Mn * (start[jj, ll][:, None] - pair_end(jj, ll)))
+        mags = np.where(short, np.abs(w) * Lf, 2.0 * np.abs(Mn))
+        pj, pb = np.nonzero(short)
+        if pj.size:
+            ap, Lp = a[pj, 0], Lf[0, pb]
+            terms[pj, pb] = (ws[pj, 0] * np.sin(ap * Lp / 2) / np.sin(ap / 2)
+                             * np.exp(0.5j * ap * (Lp - 1)))
+        total += np.sum(terms, axis=0)
+        size += np.sum(mags, axis=0)
     return total, size
 
 
@@ -138,9 +159,11 @@ def _tone_sums(Zc, theta, P0, Pb, k0, bb, c):
     r1 = c * np.exp(1j * (theta[None, :] - theta[:, None]))
     r2 = c * np.exp(1j * (theta[None, :] + theta[:, None]))
     s1, m1 = _pair_sums(herm, r1, ck0 * np.outer(P0.conj(), P0),
-                        lambda M: cb * np.sum(Pb.conj() * (M @ Pb), axis=0), L)
+                        lambda M: cb * np.sum(Pb.conj() * (M @ Pb), axis=0),
+                        lambda jj, ll: cb * Pb[jj].conj() * Pb[ll], L)
     s2, m2 = _pair_sums(sym, r2, ck0 * np.outer(P0, P0),
-                        lambda M: cb * np.sum(Pb * (M @ Pb), axis=0), L)
+                        lambda M: cb * np.sum(Pb * (M @ Pb), axis=0),
+                        lambda jj, ll: cb * Pb[jj] * Pb[ll], L)
     return 0.5 * np.real(s1) - 0.5 * np.real(s2), 0.5 * (m1 + m2)
 
 
@@ -202,29 +225,38 @@ def simpson_sums(Phi, C, D, x0, seg_start, parts, H, dt, ends, points):
         else:
             omega, phase, amp = part.frequencies, part.phases, part.amplitudes
             T, theta = omega.size, omega * dt
-            X = np.column_stack([np.linalg.solve(np.exp(1j * t) * eye - Phi, H[s][:, j])
-                                 for j, t in enumerate(theta)]) if T else np.zeros((n, 0), complex)
+            # X_j = (e^{jθ_j} I − Φ)⁻¹ H_j, all tones in one batched solve
+            X = np.linalg.solve(np.exp(1j * theta)[:, None, None] * eye - Phi,
+                                H[s].T[:, :, None])[:, :, 0].T
         Z = C @ X + np.outer(D, amp) if T else np.zeros((C.shape[0], 0), complex)
-
-        def particular(k, X=X, omega=omega, phase=phase, T=T):
-            if not T:
-                return np.zeros((k.size, n))
-            return np.imag(_phasors(omega, phase, k, dt).T @ X.T)
-
-        e = x - particular(np.array([k0]))[0]
-        # sums over the piece, for every end (clipped to the piece)
-        # sums over the piece, for every end (clipped to the piece; each distinct end once)
+        if T:
+            P0 = _phasors(omega, phase, np.array([k0]), dt)[:, 0]
+            e = x - np.imag(X @ P0)
+        else:
+            e = x.copy()
+        # every point this piece needs (the ends of its sums, its sample points and its last
+        # point), with Φ^{k−k0} e and the phasors computed once for all of them
         bu, inv = np.unique(np.clip(ends, k0, k1), return_inverse=True)
         keep = bu > k0
-        if np.any(keep):
-            bb = bu[keep]
+        bb = bu[keep]
+        here = (points >= k0) & (points < k1)
+        kk = points[here]
+        k_end = N - 1 if s == len(parts) - 1 else k1
+        ks = np.union1d(np.union1d(bb, kk), [k_end])
+        V = _powers(Phi, e, ks - k0)                                        # (len(ks), n)
+        Pk = _phasors(omega, phase, ks, dt) if T else None                  # (T, len(ks))
+        if bb.size:
+            ib = np.searchsorted(ks, bb)
             L = bb - k0
-            v = _powers(Phi, e, L)
+            v = V[ib]
             part_G = np.zeros((2, 2, bu.size))
             part_mag = np.zeros(bu.size)
             if T:
-                P0 = _phasors(omega, phase, np.array([k0]), dt)[:, 0]
-                Pb = _phasors(omega, phase, bb, dt)                         # (T, nb)
+                Pb = Pk[:, ib]                                              # (T, nb)
+                # cross terms: u_j = (I − ρ_j Φ)⁻ᵀ Cᵀ Z_j, ρ_j = c e^{jθ_j} (one batched solve per c)
+                CZ = (C.T @ Z).T[:, :, None]
+                u_of = {c: np.linalg.solve(np.swapaxes(eye - (c * np.exp(1j * theta))[:, None, None] * Phi,
+                                                       1, 2), CZ)[:, :, 0].T for c in (1, -1)}
             for si, c in enumerate((1, -1)):
                 cL = np.where(L % 2 == 0, 1.0, float(c))
                 ck0 = 1.0 if (c > 0 or k0 % 2 == 0) else -1.0
@@ -238,10 +270,7 @@ def simpson_sums(Phi, C, D, x0, seg_start, parts, H, dt, ends, points):
                     part_mag[keep] += np.abs(e) @ aY @ np.abs(e) + np.einsum("bi,ij,bj->b", np.abs(v), aY,
                                                                             np.abs(v))
                 if T:
-                    # cross terms: u_j = (I − ρ_j Φ)⁻ᵀ Cᵀ Z_j, ρ_j = c e^{jθ_j}
-                    rho = c * np.exp(1j * theta)
-                    u = np.column_stack([np.linalg.solve((eye - rho[j] * Phi).T, C.T @ Z[:, j])
-                                         for j in range(T)])
+                    u = u_of[c]
                     cb = np.where(bb % 2 == 0, 1.0, float(c))
                     first = ck0 * np.sum(P0 * (e @ u))
                     last = cb * np.einsum("jb,bj->b", Pb, v @ u)
@@ -256,18 +285,19 @@ def simpson_sums(Phi, C, D, x0, seg_start, parts, H, dt, ends, points):
                 part_G[0, si, keep] = total
             G += part_G[:, :, inv]
             mag += part_mag[inv]
-        # samples at the points of this piece
-        here = (points >= k0) & (points < k1)
-        if np.any(here):
-            kk = points[here]
-            xs = _powers(Phi, e, kk - k0) + particular(kk)
-            dk = (np.imag(_phasors(omega, phase, kk, dt)).T @ amp) if T else np.zeros(kk.size)
+        # the state x_k = Φ^{k−k0} e + Im Σ_j X_j P_j(k) at the points of ks that are used
+        xs_all = V + (np.imag(Pk.T @ X.T) if T else 0.0)
+        if kk.size:
+            ip = np.searchsorted(ks, kk)
+            xs = xs_all[ip]
+            dk = (np.imag(Pk[:, ip]).T @ amp) if T else np.zeros(kk.size)
             zs = xs @ C.T + dk[:, None] * D[None, :]
             f[0, here] = np.sum(zs * zs, axis=1)
             f[1, here] = dk * dk
         # the state at the piece's end (the next piece's start, or the last point)
+        x_end = xs_all[np.searchsorted(ks, k_end)]
         if s == len(parts) - 1:
-            x_last = _powers(Phi, e, np.array([N - 1 - k0]))[0] + particular(np.array([N - 1]))[0]
+            x_last = x_end
         else:
-            x = _powers(Phi, e, np.array([k1 - k0]))[0] + particular(np.array([k1]))[0]
+            x = x_end
     return G, f, x_last, mag
