@@ -2,6 +2,7 @@
 the aircraft, the printed gains, bands and Q's, the disturbances, the FDSC modes, our choices.
 """
 
+import functools
 import json
 from importlib import resources
 
@@ -265,6 +266,8 @@ def paper_fdsc(Q=None, *, gamma_tol=DEFAULT_GAMMA_TOL):
     Returns
     -------
     FDSC
+        Computed once per process for each ``Q`` (and ``gamma_tol``) and shared by later calls:
+        its arrays are read-only.
 
     Examples
     --------
@@ -272,11 +275,58 @@ def paper_fdsc(Q=None, *, gamma_tol=DEFAULT_GAMMA_TOL):
     >>> ctrl.in_band, [b.kind for b in ctrl.bands]
     (1, ['LF', 'HF'])
     """
+    if isinstance(Q, str):
+        as_choice("Q", Q, ("paper",))
+    key = _q_key(Q)
+    try:
+        hash(gamma_tol)
+    except TypeError:
+        key = None
+    if key is None:
+        return _build_paper_fdsc(Q, gamma_tol)
+    return _paper_fdsc_memo(key, gamma_tol if Q is None else None)
+
+
+def _q_key(Q):
+    """A hashable key of ``Q`` (None, "paper" or finite real matrices), or None if it has none
+    (invalid input: built uncached, so that the design's own checks raise)."""
+    if Q is None or isinstance(Q, str):
+        return ("design",) if Q is None else (Q,)
+    if not isinstance(Q, list | tuple):
+        return None
+    try:
+        mats = [np.asarray(q, dtype=float) for q in Q]
+    except (TypeError, ValueError):
+        return None
+    if not all(np.all(np.isfinite(m)) for m in mats):
+        return None
+    return ("given",) + tuple((m.shape, m.tobytes()) for m in mats)
+
+
+@functools.lru_cache(maxsize=16)
+def _paper_fdsc_memo(key, gamma_tol):
+    """:func:`paper_fdsc` computed once per process and per key (the chapters ask for the same
+    designs dozens of times, each a Theorem 1 solve); its arrays are made read-only, so that
+    the shared design cannot be changed by a caller."""
+    if key == ("design",):
+        ctrl = _build_paper_fdsc(None, gamma_tol)
+    elif key == ("paper",):
+        ctrl = _build_paper_fdsc("paper", gamma_tol)
+    else:
+        ctrl = _build_paper_fdsc([np.frombuffer(b).reshape(shape) for shape, b in key[1:]],
+                                 DEFAULT_GAMMA_TOL)
+    cert = ctrl.certificate
+    for a in (*ctrl.gains, *cert.Q, *cert.P, *cert.Ps, cert.gammas):
+        if isinstance(a, np.ndarray):
+            a.setflags(write=False)
+    return ctrl
+
+
+def _build_paper_fdsc(Q, gamma_tol):
     sw = paper_data("switching")
     gains = paper_gains()
     bands = paper_bands()
     if isinstance(Q, str):
-        as_choice("Q", Q, ("paper",))
         Q = paper_modes()["Q"]
     from ..design import FDSC  # imported here: loading the paper's data needs no CVXPY
 

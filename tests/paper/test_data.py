@@ -48,3 +48,24 @@ def test_paper_disturbances():
     t = np.array([0.3, 1.7])
     assert_allclose(lf_disturbance()(t), np.sin(0.1 * t) + np.sin(0.2 * t) + np.sin(0.3 * t))
     assert_allclose(hf_disturbance()(t), np.sin(100 * t) + np.sin(200 * t) + np.sin(300 * t))
+
+
+def test_paper_fdsc_is_built_once_per_q_and_cannot_be_changed():
+    from fdsc.paper.data import paper_fdsc, paper_modes
+
+    printed = paper_fdsc("paper")
+    assert paper_fdsc("paper") is printed
+    # the same matrices given explicitly: one design, whatever the container
+    given = paper_fdsc([np.array(q) for q in paper_modes()["Q"]])
+    assert paper_fdsc(tuple(np.array(q).tolist() for q in paper_modes()["Q"])) is given
+    assert given is not printed
+    assert_allclose(given.certificate.gammas, printed.certificate.gammas, rtol=1e-12)
+    with pytest.raises(ValueError, match="read-only"):
+        printed.gains[0][0, 0] = 1.0
+    with pytest.raises(ValueError, match="read-only"):
+        printed.certificate.Q[0][0, 0] = 1.0
+    # another Q gives another design; an invalid Q still meets the design's own check
+    other = paper_fdsc([2.0 * np.array(q) for q in paper_modes()["Q"]])
+    assert other is not given
+    with pytest.raises(ValueError, match="Q must be one of"):
+        paper_fdsc("printed")
