@@ -9,7 +9,8 @@ record, the sweeps and the other chapter results are computed once per session, 
 test or a chapter asks first; the folder is deleted when the session ends. With pytest-xdist
 (``-n auto`` in ``addopts``) the workers share the controller's folder, and a per-key lock
 (:func:`fdsc.paper.cache.cached`) makes a worker that needs a result another one is computing
-wait for it instead of computing it again. If ``FDSC_CACHE_DIR`` is set when pytest starts, that
+wait for it instead of computing it again; each worker's BLAS and numba threads are capped so
+that the workers share the CPUs. If ``FDSC_CACHE_DIR`` is set when pytest starts, that
 folder is used and kept (``.ci/run`` shares it with ``python -m fdsc reproduce``; the keys hash
 the sources, so a folder kept from older code never answers for new code). Tests of the cache
 itself set or unset the variable with ``monkeypatch``.
@@ -26,7 +27,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent / "book" / "_ext"))
 import notebook_cache  # noqa: E402
 import pytest  # noqa: E402
 
-from fdsc.paper.cache import CACHE_ENV  # noqa: E402
+from fdsc.paper.cache import CACHE_ENV, worker_threads  # noqa: E402
 
 _RESULTS_KEY = "fdsc_results"
 
@@ -55,6 +56,13 @@ def pytest_configure(config):
             shutil.rmtree(results, ignore_errors=True)
 
     config.add_cleanup(restore_env)
+    processes = getattr(config.option, "numprocesses", None)
+    if worker is None and isinstance(processes, int) and processes > 1:
+        # the workers of pytest-xdist (and the kernels they start) share the CPUs: cap each
+        # one's BLAS and numba threads (set before the workers start; restored at the end)
+        caps = worker_threads(processes)
+        caps.__enter__()
+        config.add_cleanup(lambda: caps.__exit__(None, None, None))
     if not getattr(config.option, "nbmake", False):
         return
     from nbmake.nb_run import NotebookRun

@@ -31,11 +31,15 @@ try:
 except ImportError:        # not POSIX: no lock (concurrent processes may compute a value twice)
     fcntl = None
 
-__all__ = ["cached", "fingerprint", "shared_results", "file_lock", "CACHE_ENV"]
+__all__ = ["cached", "fingerprint", "shared_results", "file_lock", "worker_threads", "CACHE_ENV",
+           "THREAD_VARS"]
 
 #: Environment variable naming the cache folder (unset: no caching).
 CACHE_ENV = "FDSC_CACHE_DIR"
 _PLAIN = (int, float, str, bool, type(None))
+#: Environment variables that cap the threads of a process's BLAS (OpenBLAS, MKL, OpenMP) and of
+#: numba's parallel loops; read when those libraries load, so set before a process starts.
+THREAD_VARS = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "NUMBA_NUM_THREADS")
 
 
 @functools.cache
@@ -187,3 +191,44 @@ def shared_results():
     finally:
         os.environ.pop(CACHE_ENV, None)
         shutil.rmtree(folder, ignore_errors=True)
+
+
+@contextlib.contextmanager
+def worker_threads(processes: int):
+    """Within the block, processes started inherit thread caps that share the CPUs among
+    ``processes`` of them: each BLAS and numba gets ``max(1, CPUs // processes)`` threads.
+
+    Without caps, every worker starts one BLAS thread and one numba thread per CPU, and on a
+    machine with as many workers as CPUs those threads wait for each other in every small
+    matrix product and parallel loop. A variable the caller has set is kept.
+
+    Parameters
+    ----------
+    processes : int
+        How many processes will run at once (≥ 1).
+
+    Yields
+    ------
+    dict
+        The caps in force, ``{variable: value}``.
+
+    Examples
+    --------
+    >>> with worker_threads(os.cpu_count() or 1) as caps:
+    ...     sorted(caps) == sorted(THREAD_VARS)
+    True
+    """
+    if not isinstance(processes, int) or isinstance(processes, bool) or processes < 1:
+        raise ValueError(f"processes must be a whole number ≥ 1, found {processes!r}")
+    per = str(max(1, (os.cpu_count() or 1) // processes))
+    saved = {v: os.environ.get(v) for v in THREAD_VARS}
+    caps = {v: saved[v] if saved[v] else per for v in THREAD_VARS}
+    os.environ.update(caps)
+    try:
+        yield caps
+    finally:
+        for v, old in saved.items():
+            if old is None:
+                os.environ.pop(v, None)
+            else:
+                os.environ[v] = old

@@ -29,7 +29,7 @@ from . import (
     three_mode,
     wellposed,
 )
-from .cache import cached, shared_results
+from .cache import cached, shared_results, worker_threads
 from .environment import environment
 from .names import FIGURE_IDS
 from .results import RecordPart
@@ -147,7 +147,9 @@ def chapter_parts(chapters, jobs):
         Processes (1: this process, one chapter after the other). The worker processes are
         started fresh (``spawn``) and inherit the environment, so inside
         :func:`~fdsc.paper.cache.shared_results` they share the results folder; its per-key
-        locks make a process that needs a result another one is computing wait for it.
+        locks make a process that needs a result another one is computing wait for it. Each
+        worker's BLAS and numba threads are capped so that the workers share the CPUs
+        (:func:`~fdsc.paper.cache.worker_threads`).
 
     Returns
     -------
@@ -157,8 +159,9 @@ def chapter_parts(chapters, jobs):
         return [chapter.record_part() for chapter in chapters]
     rank = {m.__name__: i for i, m in enumerate(_LONGEST_FIRST)}
     order = sorted(chapters, key=lambda m: rank.get(m.__name__, len(rank)))
-    with ProcessPoolExecutor(min(jobs, len(chapters)),
-                             mp_context=multiprocessing.get_context("spawn")) as pool:
+    workers = min(jobs, len(chapters))
+    with worker_threads(workers), ProcessPoolExecutor(
+            workers, mp_context=multiprocessing.get_context("spawn")) as pool:
         futures = {m.__name__: pool.submit(_chapter_part, m.__name__) for m in order}
         return [futures[m.__name__].result() for m in chapters]
 
