@@ -205,6 +205,36 @@ def test_batch_pads_cases_of_different_sizes_and_equals_single_runs():
     assert batch[0].switches > 0
 
 
+_TWO_THREADS = """
+import numpy as np, numba
+from fdsc.paper.data import mixed_disturbance, paper_modes
+from fdsc.stream import Case, simulate_batch
+assert numba.config.NUMBA_NUM_THREADS >= 2
+pm = paper_modes()
+cases = [Case(pm["modes"], mixed_disturbance(r), 3.0, 1e-3, law_bands=pm["bands"], law_Q=pm["Q"])
+         for r in (0.0, 0.1, 0.3, 0.5, 1.0)]
+a = simulate_batch(cases, threads=2, cumulative_every=0.5)
+b = simulate_batch(cases, threads=1, cumulative_every=0.5)
+assert np.array_equal(a.energy, b.energy) and np.array_equal(a.switches, b.switches)
+assert all(np.array_equal(x.energy_cum, y.energy_cum) for x, y in zip(a, b))
+print("same", int(a.switches.sum()))
+"""
+
+
+def test_batch_on_two_threads_equals_one_thread_in_a_fresh_process():
+    # the test session caps numba at one thread per worker (conftest.py): two threads are
+    # checked in a process of their own
+    import os
+    import subprocess
+    import sys
+
+    env = dict(os.environ, NUMBA_NUM_THREADS="2")
+    out = subprocess.run([sys.executable, "-c", _TWO_THREADS], env=env, capture_output=True,
+                         text=True, timeout=300)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.startswith("same") and int(out.stdout.split()[1]) > 0
+
+
 def test_python_loop_equals_the_compiled_one():
     pm = paper_modes()
     kw = dict(law_bands=pm["bands"], law_Q=pm["Q"], x0=[0.01, -0.02], cumulative_every=0.1, trace_every=0.05)

@@ -84,3 +84,26 @@ def test_a_value_being_computed_is_waited_for_not_computed_again(monkeypatch, tm
     first.join()
     assert calls == [7]
     assert out["a"] == out["b"] == [7, 7]
+
+
+def test_worker_threads_share_the_cpus_keep_a_callers_setting_and_restore(monkeypatch):
+    import multiprocessing
+    import os
+    from concurrent.futures import ProcessPoolExecutor
+
+    for v in cache.THREAD_VARS:
+        monkeypatch.delenv(v, raising=False)
+    monkeypatch.setenv("MKL_NUM_THREADS", "7")
+    monkeypatch.setattr(os, "cpu_count", lambda: 8)
+    with cache.worker_threads(3) as caps:
+        # a process started in the block sees the caps (8 CPUs // 3 workers = 2 threads each)
+        with ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn")) as pool:
+            seen = pool.submit(os.getenv, "OPENBLAS_NUM_THREADS").result()
+    assert seen == "2" and caps["NUMBA_NUM_THREADS"] == "2" and caps["MKL_NUM_THREADS"] == "7"
+    assert "OPENBLAS_NUM_THREADS" not in os.environ and os.environ["MKL_NUM_THREADS"] == "7"
+    with cache.worker_threads(16) as caps:
+        assert caps["OMP_NUM_THREADS"] == "1"          # never fewer than one thread
+    for bad in (0, 1.5, True, "2"):
+        with pytest.raises(ValueError, match="processes must be a whole number"):
+            with cache.worker_threads(bad):
+                pass
