@@ -1,21 +1,17 @@
 """The README's "Use it on your own plant" example runs exactly as written."""
 
-import re
 from pathlib import Path
 
 import matplotlib
 import numpy as np
 import pytest
+from readme_numbers import example_code  # tests/readme_numbers.py (also run by .ci/run)
 
 README = Path(__file__).resolve().parent.parent / "README.md"
 
 
 def _own_plant_example():
-    text = README.read_text(encoding="utf-8")
-    section = text.split("## Use it on your own plant", 1)[1].split("\n## ", 1)[0]
-    blocks = re.findall(r"```python\n(.*?)```", section, re.S)
-    assert len(blocks) == 1, "the section must hold exactly one python example"
-    return blocks[0]
+    return example_code(README)
 
 
 def test_own_plant_example_runs_as_written(tmp_path, monkeypatch, capsys):
