@@ -70,7 +70,9 @@ def test_lf_lmi_is_optimal_on_stable_random_plants():
     for _ in range(4):
         plant = random_plant(rng, stable=True)
         res = synthesize(plant, Band.lf(1.0))
-        direct = optimize_gain(plant, Band.lf(1.0), res.K, n_starts=3, rng=rng)
+        # maxiter 1000: on the second plant two perturbed starts creep along a flat valley at the
+        # LMI's value (4000 iterations, 28 s, moved them by 7e-9 relative and never converged)
+        direct = optimize_gain(plant, Band.lf(1.0), res.K, n_starts=3, maxiter=1000, rng=rng)
         assert direct.gamma_sweep <= res.gamma_sweep * (1 + 1e-9)  # started at the LMI gain
         assert direct.gamma_sweep >= res.gamma_sweep * (1 - 1e-3)
 
