@@ -82,3 +82,13 @@ def test_aircraft_headline():
         assert np.all(r.energy[name] >= oracle)
     np.testing.assert_allclose(r.noise_measured_alpha, r.noise_alpha, atol=1e-9)
     assert r.pays().startswith("On the aircraft example")
+
+
+def test_pilot_equals_one_steady_state_gain_per_draw():
+    ex = mc._example("generic")
+    pilot = mc._pilot(ex, 25, 3)
+    draws = mc.draw_tones(ex, 25, np.random.default_rng(3))
+    for name in ex.fixed_names:
+        cl = ex.closed_loop(name)
+        each = [fdsc.steady_state_gain(cl, d.frequencies, d.amplitudes) ** 2 for d in draws.disturbances]
+        assert pilot[name] == float(np.mean(each))          # the same numbers, bit for bit
