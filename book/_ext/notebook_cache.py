@@ -23,7 +23,6 @@ nothing, and the build fails and deletes its cache folder and its environment (b
 import copy
 import functools
 import hashlib
-import os
 import platform
 import shutil
 import time
@@ -35,7 +34,7 @@ from jupyter_cache.base import CacheBundleIn
 from sphinx.application import ENV_PICKLE_FILENAME
 from sphinx.errors import ExtensionError
 
-from fdsc.paper.cache import file_lock
+from fdsc.paper.cache import environ, file_lock
 
 #: The repository: ``fdsc/``, ``requirements.txt`` and ``book/`` are in it.
 ROOT = Path(__file__).resolve().parents[2]
@@ -222,17 +221,9 @@ def caching_execute(execute, root=ROOT, kernel_env=None):
     def run_and_store(run):
         source = nbformat.read(str(run.filename), as_version=4)
         key = source_key(root)
-        saved = {name: os.environ.get(name) for name in env}
-        os.environ.update(env)
         start = time.perf_counter()
-        try:
+        with environ(env):
             result = execute(run)
-        finally:
-            for name, value in saved.items():
-                if value is None:
-                    os.environ.pop(name, None)
-                else:
-                    os.environ[name] = value
         seconds = time.perf_counter() - start
         own_kernel = run.kernel in (None, source.metadata.get("kernelspec", {}).get("name"))
         if (result.error is None and not error_outputs(result.nb) and own_kernel

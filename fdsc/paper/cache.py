@@ -31,8 +31,8 @@ try:
 except ImportError:        # not POSIX: no lock (concurrent processes may compute a value twice)
     fcntl = None
 
-__all__ = ["cached", "fingerprint", "shared_results", "file_lock", "worker_threads", "CACHE_ENV",
-           "THREAD_VARS"]
+__all__ = ["cached", "fingerprint", "shared_results", "file_lock", "worker_threads", "environ",
+           "CACHE_ENV", "THREAD_VARS"]
 
 #: Environment variable naming the cache folder (unset: no caching).
 CACHE_ENV = "FDSC_CACHE_DIR"
@@ -221,14 +221,36 @@ def worker_threads(processes: int):
     if not isinstance(processes, int) or isinstance(processes, bool) or processes < 1:
         raise ValueError(f"processes must be a whole number ≥ 1, found {processes!r}")
     per = str(max(1, (os.cpu_count() or 1) // processes))
-    saved = {v: os.environ.get(v) for v in THREAD_VARS}
-    caps = {v: saved[v] if saved[v] else per for v in THREAD_VARS}
-    os.environ.update(caps)
-    try:
+    caps = {v: os.environ.get(v) or per for v in THREAD_VARS}
+    with environ(caps):
         yield caps
+
+
+@contextlib.contextmanager
+def environ(values: dict):
+    """Within the block, the environment variables ``values`` are set; afterwards each is back
+    to its earlier value (or unset).
+
+    Parameters
+    ----------
+    values : dict
+        ``{name: value}``, strings.
+
+    Examples
+    --------
+    >>> with environ({"FDSC_EXAMPLE_VARIABLE": "1"}):
+    ...     os.environ["FDSC_EXAMPLE_VARIABLE"]
+    '1'
+    >>> "FDSC_EXAMPLE_VARIABLE" in os.environ
+    False
+    """
+    saved = {name: os.environ.get(name) for name in values}
+    os.environ.update(values)
+    try:
+        yield
     finally:
-        for v, old in saved.items():
+        for name, old in saved.items():
             if old is None:
-                os.environ.pop(v, None)
+                os.environ.pop(name, None)
             else:
-                os.environ[v] = old
+                os.environ[name] = old
