@@ -16,6 +16,7 @@ the sources, so a folder kept from older code never answers for new code). Tests
 itself set or unset the variable with ``monkeypatch``.
 """
 
+import contextlib
 import os
 import shutil
 import sys
@@ -60,9 +61,9 @@ def pytest_configure(config):
     if worker is None and isinstance(processes, int) and processes > 1:
         # the workers of pytest-xdist (and the kernels they start) share the CPUs: cap each
         # one's BLAS and numba threads (set before the workers start; restored at the end)
-        caps = worker_threads(processes)
-        caps.__enter__()
-        config.add_cleanup(lambda: caps.__exit__(None, None, None))
+        caps = contextlib.ExitStack()
+        caps.enter_context(worker_threads(processes))
+        config.add_cleanup(caps.close)
     if not getattr(config.option, "nbmake", False):
         return
     from nbmake.nb_run import NotebookRun

@@ -32,7 +32,8 @@ _EXPORTS = {
     "exceptions": ("BandError", "DimensionError", "FdscError", "InfeasibleError", "IterationLimitError",
                    "MemoryLimitError", "SingularFrequencyError", "SolverError", "UnstableError",
                    "UnstableRunWarning", "VerificationError"),
-    "frequency": ("BandPeak", "band_peak", "freqresp", "sigma_max", "steady_state_gain"),
+    "frequency": ("BandPeak", "band_peak", "freqresp", "sigma_max", "steady_state_gain", "steady_state_gains",
+                  "steady_state_gains"),
     "lmi": ("GKYPResult", "gkyp_certify", "gkyp_gamma"),
     "lyapunov_jumps": ("SwitchingCertificate", "certify_switching", "certify_switching_gain",
                        "switching_forms"),
@@ -121,7 +122,7 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers and editors
         UnstableRunWarning,
         VerificationError,
     )
-    from .frequency import BandPeak, band_peak, freqresp, sigma_max, steady_state_gain
+    from .frequency import BandPeak, band_peak, freqresp, sigma_max, steady_state_gain, steady_state_gains
     from .lmi import GKYPResult, gkyp_certify, gkyp_gamma
     from .lyapunov_jumps import (
         SwitchingCertificate,
@@ -155,7 +156,7 @@ __all__ = [
     # systems
     "LTISystem", "Plant", "as_system", "as_plant",
     # frequency responses and Lemma 1
-    "BandPeak", "band_peak", "freqresp", "sigma_max", "steady_state_gain",
+    "BandPeak", "band_peak", "freqresp", "sigma_max", "steady_state_gain", "steady_state_gains",
     "GKYPResult", "gkyp_gamma", "gkyp_certify",
     # synthesis
     "SynthesisResult", "synthesize", "synthesize_hinf", "optimize_gain",

@@ -94,7 +94,7 @@ def _pair_sums(weight, ratio, start, end_terms, pair_end, L):
     """For every end b = k0 + L: ``Σ_{k=k0}^{b−1} Σ_{jl} weight_jl q_jl(k)``, each ``q_jl``
     geometric with ratio ``ratio_jl`` (|ratio| = 1) and ``q_jl(k0) = start_jl``;
     ``end_terms(M)`` returns ``Σ_jl M_jl q_jl(b)`` for every b, ``pair_end(jj, ll)`` the
-    ``q_jl(b)`` of the pairs (jj[i], ll[i]), (len(j), nb). Also returns the size of the terms that were
+    ``q_jl(b)`` of the pairs (jj[i], ll[i]), (len(jj), nb). Also returns the size of the terms that were
     added (for the cancellation check).
 
     Per pair, ``Σ_{m<L} r^m`` is ``L`` if r = 1, ``(1 − r^L) / (1 − r)`` as

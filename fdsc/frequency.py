@@ -22,7 +22,7 @@ from .exceptions import IterationLimitError, SingularFrequencyError
 from .plant import LTISystem, as_system
 
 __all__ = ["freqresp", "sigma_max", "BandPeak", "band_peak", "DEFAULT_GRID_POINTS",
-           "check_no_pole_at", "steady_state_gain"]
+           "check_no_pole_at", "steady_state_gain", "steady_state_gains"]
 
 #: Grid points per decade-spanning sweep before refinement.
 DEFAULT_GRID_POINTS = 4000
@@ -349,13 +349,54 @@ def steady_state_gain(sys: LTISystem, frequencies: ArrayLike, amplitudes: ArrayL
     >>> round(steady_state_gain(sys, [1.0], [2.0]), 12)   # |1/(j + 1)| = 1/sqrt(2)
     0.707106781187
     """
+    return float(steady_state_gains(sys, [(frequencies, amplitudes)])[0])
+
+
+def steady_state_gains(sys: LTISystem, tones) -> np.ndarray:
+    """:func:`steady_state_gain` for many disturbances at once (one frequency-response call).
+
+    Parameters
+    ----------
+    sys : LTISystem, control.StateSpace or (A, B, C, D)
+        Stable, with one input.
+    tones : sequence of (frequencies, amplitudes)
+        One pair per disturbance, each as :func:`steady_state_gain` takes it.
+
+    Returns
+    -------
+    (len(tones),) ndarray
+        The ratio of each disturbance (equal, bit for bit, to :func:`steady_state_gain` of it).
+
+    Raises
+    ------
+    UnstableError, ValueError, DimensionError
+        As :func:`steady_state_gain` (the message names the disturbance's index).
+
+    Examples
+    --------
+    >>> from fdsc import LTISystem
+    >>> sys = LTISystem([[-1.0]], [[1.0]], [[1.0]], [[0.0]])
+    >>> steady_state_gains(sys, [([1.0], [2.0]), ([1.0, 3.0], [1.0, 0.0])]).round(6)
+    array([0.707107, 0.707107])
+    """
     sys = as_system(sys)
     if sys.n_inputs != 1:
         raise ValueError(f"sys must have one input, found {sys.n_inputs}")
-    w = as_vector("frequencies", frequencies)
-    a = as_vector("amplitudes", amplitudes, w.size)
-    if np.any(w <= 0) or np.unique(w).size != w.size:
-        raise ValueError("frequencies must be distinct and > 0 rad/s")
+    tones = list(tones)
+    if not tones:
+        raise ValueError("tones must hold at least one (frequencies, amplitudes) pair")
+    pairs = []
+    for i, pair in enumerate(tones):
+        where = "" if len(tones) == 1 else f"tones[{i}]: "
+        if len(pair) != 2:
+            raise ValueError(f"{where}each entry of tones must be (frequencies, amplitudes)")
+        w = as_vector(f"{where}frequencies", pair[0])
+        a = as_vector(f"{where}amplitudes", pair[1], w.size)
+        if np.any(w <= 0) or np.unique(w).size != w.size:
+            raise ValueError(f"{where}frequencies must be distinct and > 0 rad/s")
+        pairs.append((w, a))
     check_hurwitz("sys", sys.A, "a steady state")
-    G = freqresp(sys, w)[:, :, 0]
-    return float(np.sqrt(np.sum(a**2 * np.sum(np.abs(G) ** 2, axis=1)) / np.sum(a**2)))
+    g2 = np.sum(np.abs(freqresp(sys, np.concatenate([w for w, _ in pairs]))[:, :, 0]) ** 2, axis=1)
+    ends = np.cumsum([w.size for w, _ in pairs])[:-1]
+    return np.array([np.sqrt(np.sum(a**2 * g) / np.sum(a**2))
+                     for (_, a), g in zip(pairs, np.split(g2, ends), strict=True)])

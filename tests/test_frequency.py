@@ -85,3 +85,18 @@ def test_band_peak_interior_of_mf():
 def test_bad_frequency_inputs(call, exc, match):
     with pytest.raises(exc, match=match):
         call()
+
+
+def test_steady_state_gains_equal_one_gain_per_disturbance_and_name_a_bad_one():
+    from fdsc import steady_state_gain, steady_state_gains
+
+    sys = aircraft().closed_loop(paper_gains()["K_f3"])
+    rng = np.random.default_rng(2)
+    tones = [(rng.uniform(0.1, 300.0, k), rng.uniform(0.1, 2.0, k)) for k in (1, 3, 6, 2)]
+    many = steady_state_gains(sys, tones)
+    assert many.shape == (4,)
+    assert all(g == steady_state_gain(sys, w, a) for g, (w, a) in zip(many, tones, strict=True))
+    with pytest.raises(ValueError, match=r"tones\[1\]: frequencies must be distinct"):
+        steady_state_gains(sys, [tones[0], ([1.0, 1.0], [1.0, 1.0])])
+    with pytest.raises(ValueError, match="at least one"):
+        steady_state_gains(sys, [])
