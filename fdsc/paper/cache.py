@@ -18,6 +18,7 @@ code never returns a stale value.
 import contextlib
 import functools
 import hashlib
+import inspect
 import os
 import pickle
 import shutil
@@ -121,7 +122,8 @@ def cached(fn: Callable) -> Callable:
     Notes
     -----
     A value is stored as ``<module>.<qualname>-<key>.pickle``, the key hashing the
-    :func:`fingerprint`, the function's name and its arguments; it is written to a temporary
+    :func:`fingerprint`, the function's name and its arguments (by name, defaults filled in:
+    ``f()``, ``f(21)`` and ``f(n=21)`` share a value); it is written to a temporary
     file and renamed, so that a concurrent reader never sees half a file. A process computing a
     value holds a lock on its key, so that processes sharing the folder compute it once.
 
@@ -133,13 +135,21 @@ def cached(fn: Callable) -> Callable:
     >>> square(3), square.__wrapped__(4)
     (9, 16)
     """
+    signature = inspect.signature(fn)
+
     @functools.wraps(fn)
     def wrapper(*args, **kwargs):
         folder = os.environ.get(CACHE_ENV)
-        if not folder or not _plain(args) or not _plain(tuple(kwargs.values())):
+        if not folder:
             return fn(*args, **kwargs)
-        key = hashlib.sha256(repr((fingerprint(), fn.__module__, fn.__qualname__, args,
-                                   sorted(kwargs.items()))).encode()).hexdigest()[:24]
+        # the key names every argument with its default filled in, so that f(), f(21) and
+        # f(n=21) share one value
+        bound = signature.bind(*args, **kwargs)
+        bound.apply_defaults()
+        if not _plain(tuple(bound.arguments.values())):
+            return fn(*args, **kwargs)
+        key = hashlib.sha256(repr((fingerprint(), fn.__module__, fn.__qualname__,
+                                   sorted(bound.arguments.items()))).encode()).hexdigest()[:24]
         path = Path(folder) / f"{fn.__module__}.{fn.__qualname__}-{key}.pickle"
         path.parent.mkdir(parents=True, exist_ok=True)
         with file_lock(path.with_name(path.name + ".lock")):

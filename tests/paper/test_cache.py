@@ -34,6 +34,20 @@ def test_with_the_variable_each_argument_set_is_computed_once(monkeypatch, tmp_p
     assert len(list(tmp_path.glob("*.pickle"))) == 2
 
 
+def test_the_same_arguments_spelled_differently_share_one_value(monkeypatch, tmp_path):
+    # chapter 'baselines' calls mixed_sweep() where chapter 'nonstationary' calls
+    # mixed_sweep(dt=1e-3): both must find one value (the key once held the arguments as given)
+    monkeypatch.setenv(CACHE_ENV, str(tmp_path))
+    CALLS.clear()
+    a = _square(3.0)
+    b = _square(3.0, shift=0.0)
+    c = _square(x=3.0, shift=0.0)
+    d = _square(3.0, shift=0.5)
+    assert CALLS == [(3.0, 0.0), (3.0, 0.5)]
+    assert a.tolist() == b.tolist() == c.tolist() == [9.0] and d.tolist() == [9.5]
+    assert len(list(tmp_path.glob("*.pickle"))) == 2
+
+
 def test_arguments_that_are_not_plain_bypass_the_cache(monkeypatch, tmp_path):
     monkeypatch.setenv(CACHE_ENV, str(tmp_path))
     CALLS.clear()
