@@ -48,17 +48,21 @@ independent of the horizon, wherever that keeps the loop's accuracy (else the lo
 :func:`simulate_stream`, Notes).
 
 **Batch.** :func:`simulate_batch` runs many :class:`Case` s (mode sets, disturbances, laws,
-horizons and steps may all differ) in one compiled call, parallel over cases on
-``numba.get_num_threads()`` threads; the results come back as arrays (:class:`BatchResult`).
+horizons and steps may all differ) in one call, parallel over cases on
+``numba.get_num_threads()`` threads: each case is one call of the compiled loop, which releases
+the GIL, from a pool of Python threads, the longest cases first; the results come back as arrays
+(:class:`BatchResult`). The compiled loop is specialized to the batch's sizes when the batch is
+long enough to repay a compilation (:data:`UNROLL_MIN_STEPS`), with the same results bit for bit.
 """
 
 import math
 import warnings
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 
 import numba
 import numpy as np
-from numba import njit, prange
+from numba import njit
 from numpy.typing import ArrayLike
 from scipy.linalg import expm
 
@@ -71,7 +75,7 @@ from .signals import Piecewise, Sampled, Sinusoids
 from .simulate import LAWS, _as_modes, _law_weights, _shared_input
 
 __all__ = ["Case", "Trace", "StreamResult", "BatchResult", "simulate_stream", "simulate_batch",
-           "PHASOR_BLOCK", "STREAM_KERNELS"]
+           "PHASOR_BLOCK", "STREAM_KERNELS", "UNROLL_MAX", "UNROLL_MIN_STEPS"]
 
 #: Steps per block of phasor rotations (the first phasor of a block is computed by cos and sin).
 PHASOR_BLOCK = 512
@@ -91,17 +95,33 @@ _LAW_CODE = {"previous": 0, "candidate": 1}
 def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
                kind, seg_start, seg_nt, omega, amp, phase, Gr, Gi, Rre, Rim,
                u, G0, G1, cum_every, trace_every, dwell_edges, rparams, ring, ring_sum, istate,
-               sums, share_steps, dwell_counts, cum, tr_lo, tr_hi, tr_share, x_out, info):
+               sums, share_steps, dwell_counts, cum, tr_lo, tr_hi, tr_share, x_out, info, shape):
     """One run; see the module docstring. Writes every result into the output arguments.
 
     ``sums`` = [∫zᵀz, ∫d², switches]; ``info`` = [diverged point or −1, final mode]. Points
     are k = 0 … N−1; step k goes from point k to point k+1 and uses
-    the mode chosen at point k and the disturbance segment that contains point k."""
-    n = x0.shape[0]
-    p = C.shape[1]
-    T = omega.shape[1]
+    the mode chosen at point k and the disturbance segment that contains point k.
+
+    ``shape`` specializes the compiled loop (see :func:`_shape_tag`): seven tuples whose
+    lengths, constants of the compiled code, are n, p, the number of modes, the length of a
+    row of ``Mt``, the number of tones T (every segment padded to T: padded tones have zero
+    amplitude, gains and rotations and add exact zeros), 1 if the disturbance is a sum of
+    sinusoids and 1 if no traces are kept; an empty tuple leaves that quantity to the arrays
+    and arguments. The loops then have fixed trip counts, about twice as fast for the paper's
+    loop, and give the same numbers."""
+    # sizes: constants of the compiled code where ``shape`` gives them, else from the arrays
+    n = len(shape[0]) if len(shape[0]) > 0 else x0.shape[0]
+    p = len(shape[1]) if len(shape[1]) > 0 else C.shape[1]
+    if len(shape[2]) > 0:
+        nm = len(shape[2])
+    nt2 = len(shape[3]) if len(shape[3]) > 0 else Mt.shape[2]
+    TT = len(shape[4])      # > 0: every segment's tone loops run over all T tones
+    T = TT if TT > 0 else omega.shape[1]
+    if len(shape[5]) > 0:
+        kind = 0
+    if len(shape[6]) > 0:
+        trace_every = 0
     K = Rre.shape[1]
-    nt2 = Mt.shape[2]
     # ξ = [x; d] (first-order law) or [x; d; ḋ] (second-order law): nt2 = r (r + 1) / 2
     r_xi = n + 1 if nt2 == (n + 1) * (n + 2) // 2 else n + 2
     prod = np.empty(nt2)
@@ -121,7 +141,7 @@ def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
     s = 0
     kb = 0
     if kind == 0:
-        for j in range(seg_nt[0]):
+        for j in range(TT if TT > 0 else seg_nt[0]):
             th = omega[0, j] * (0.0 * dt) + phase[0, j]
             bre[j] = math.cos(th)
             bim[j] = math.sin(th)
@@ -157,14 +177,14 @@ def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
         if kind == 0 and k == seg_start[s + 1]:
             s += 1
             kb = k
-            for j in range(seg_nt[s]):
+            for j in range(TT if TT > 0 else seg_nt[s]):
                 th = omega[s, j] * (k * dt) + phase[s, j]
                 bre[j] = math.cos(th)
                 bim[j] = math.sin(th)
                 pre[j] = bre[j]
                 pim[j] = bim[j]
         if kind == 0:
-            nt = seg_nt[s]
+            nt = TT if TT > 0 else seg_nt[s]
             dk = 0.0
             for j in range(nt):
                 dk += amp[s, j] * pim[j]
@@ -355,24 +375,8 @@ def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
 
 
 
-_case_numba = njit(cache=True)(_case_loop)
-
-
-@njit(parallel=True, cache=True)
-def _batch_numba(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
-                 kind, seg_start, seg_nt, omega, amp, phase, Gr, Gi, Rre, Rim,
-                 u_all, u_off, G0, G1, cum_every, trace_every, dwell_edges, cum_off, tr_off,
-                 rparams, ring, ring_off, ring_sum, istate,
-                 sums, share_steps, dwell_counts, cum, tr_lo, tr_hi, tr_share, x_out, info):
-    for c in prange(N.shape[0]):
-        _case_numba(N[c], dt[c], nm[c], Phi[c], C[c], D[c], Mt[c], law[c], sigma0[c],
-                    x0[c], kind[c], seg_start[c], seg_nt[c], omega[c], amp[c], phase[c], Gr[c],
-                    Gi[c], Rre[c], Rim[c], u_all[u_off[c]:u_off[c + 1]], G0[c], G1[c],
-                    cum_every[c], trace_every[c], dwell_edges[c], rparams[c],
-                    ring[ring_off[c]:ring_off[c + 1]], ring_sum[c], istate[c],
-                    sums[c], share_steps[c], dwell_counts[c], cum[cum_off[c]:cum_off[c + 1]],
-                    tr_lo[tr_off[c]:tr_off[c + 1]], tr_hi[tr_off[c]:tr_off[c + 1]],
-                    tr_share[tr_off[c]:tr_off[c + 1]], x_out[c], info[c])
+# nogil: the cases of a batch run on Python threads (see _run_loop), each in compiled code
+_case_numba = njit(cache=True, nogil=True)(_case_loop)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -909,9 +913,17 @@ def _run(preps, kernel, threads, closed_form=True):
     """Results of every prepared case: by the closed form where it applies (if allowed), by the
     loop otherwise."""
     closed = [_closed_result(q) if closed_form and _closed_form_applies(q) else None for q in preps]
-    looped = [q for q, c in zip(preps, closed, strict=True) if c is None]
-    rest = iter(_run_loop(looped, kernel, threads) if looped else [])
-    return [next(rest) if c is None else c for c in closed]
+    looped = [i for i, c in enumerate(closed) if c is None]
+    # the loop runs in groups of cases with the same number of modes, kind of input and traces
+    # or none, so that each group's compiled loop can be specialized to it (_shape_tag)
+    groups = {}
+    for i in looped:
+        q = preps[i]
+        groups.setdefault((q["nm"], q["kind"] == _KIND_SINES, q["trace_every"] == 0), []).append(i)
+    for members in groups.values():
+        for i, res in zip(members, _run_loop([preps[i] for i in members], kernel, threads), strict=True):
+            closed[i] = res
+    return closed
 
 
 def _closed_form_applies(pr):
@@ -961,8 +973,46 @@ def _closed_result(pr):
         trace=None, diverged_at=None)
 
 
+#: Largest size for which the compiled loop is specialized (see :func:`_shape_tag`): states,
+#: outputs, tones and modes up to this many have loops of a fixed trip count.
+UNROLL_MAX = 8
+#: Fewest steps in one call for which the specialized loop is used: compiling it for new sizes
+#: costs a few seconds once (then numba's disk cache has it), which short runs would not repay.
+UNROLL_MIN_STEPS = 1_000_000
+
+
+def _shape_tag(st, kernel):
+    """The ``shape`` argument of the compiled loop for the stacked cases ``st``.
+
+    The general loop (``((),) * 7``) reads every size from its arrays, so its small inner loops
+    (over the n states, p outputs, T tones, modes) have trip counts unknown to the compiler.
+    For a call of at least :data:`UNROLL_MIN_STEPS` steps by the compiled kernel, each size up
+    to :data:`UNROLL_MAX` that all cases share (after padding: n, p, T and the law's vector are
+    padded to the largest case, the number of modes only if every case has it) becomes the
+    length of a tuple: a constant of the compiled code, one compiled loop per combination. The
+    arithmetic is the same, in the same order, so the results are the general loop's bit for
+    bit (the tests check this): padded tones add exact zeros.
+    """
+    general = ((),) * 7
+    if kernel != "numba" or int(st["N"].sum()) < UNROLL_MIN_STEPS:
+        return general
+
+    def fixed(size):
+        return (0,) * int(size) if 0 < size <= UNROLL_MAX else ()
+
+    nm = st["nm"]
+    sines = st["kind"] == _KIND_SINES
+    n_law = st["Mt"].shape[3]
+    return (fixed(st["x0"].shape[1]), fixed(st["D"].shape[1]),
+            fixed(nm[0]) if np.all(nm == nm[0]) else (),
+            (0,) * n_law if n_law <= (UNROLL_MAX + 1) * (UNROLL_MAX + 2) // 2 else (),
+            fixed(st["omega"].shape[2]) if np.any(sines) else (),
+            (0,) if np.all(sines) else (), (0,) if np.all(st["trace_every"] == 0) else ())
+
+
 def _run_loop(preps, kernel, threads):
     st, dims = _stack(preps)
+    shape = _shape_tag(st, kernel)
     Cn, n, p, nm, nb = len(preps), dims["n"], dims["p"], dims["nm"], dims["nb"]
     q = n + p + 1
     sums = np.zeros((Cn, 3))
@@ -978,28 +1028,29 @@ def _run_loop(preps, kernel, threads):
     ring = np.zeros((int(st["ring_off"][-1]), nm))
     ring_sum = np.zeros((Cn, nm))
     istate = np.zeros((Cn, 3), dtype=np.int64)
-    if kernel == "numba" and Cn > 1:
-        saved = numba.get_num_threads()
-        numba.set_num_threads(threads)
-        try:
-            with np.errstate(over="ignore", invalid="ignore"):
-                _batch_numba(*args, st["u_all"], st["u_off"], st["G0"], st["G1"], st["cum_every"],
-                             st["trace_every"], st["dwell_edges"], st["cum_off"], st["tr_off"],
-                             st["rparams"], ring, st["ring_off"], ring_sum, istate, *outputs)
-        finally:
-            numba.set_num_threads(saved)
+    loop = _case_numba if kernel == "numba" else _case_loop
+
+    def run(c):
+        u = st["u_all"][st["u_off"][c]:st["u_off"][c + 1]]
+        cs = slice(st["cum_off"][c], st["cum_off"][c + 1])
+        ts = slice(st["tr_off"][c], st["tr_off"][c + 1])
+        with np.errstate(over="ignore", invalid="ignore"):
+            loop(*[a[c] for a in args], u, st["G0"][c], st["G1"][c], st["cum_every"][c],
+                 st["trace_every"][c], st["dwell_edges"][c], st["rparams"][c],
+                 ring[st["ring_off"][c]:st["ring_off"][c + 1]], ring_sum[c], istate[c],
+                 sums[c], share_steps[c],
+                 dwell_counts[c], cum[cs], tr_lo[ts], tr_hi[ts], tr_share[ts], x_out[c], info[c],
+                 shape)
+
+    # longest first, so that the threads finish together; each case writes only its own rows
+    order = sorted(range(Cn), key=lambda c: -int(st["N"][c]))
+    if kernel == "numba" and Cn > 1 and threads > 1:
+        with ThreadPoolExecutor(min(threads, Cn)) as pool:
+            for _ in pool.map(run, order):
+                pass
     else:
-        loop = _case_numba if kernel == "numba" else _case_loop
-        for c in range(Cn):
-            u = st["u_all"][st["u_off"][c]:st["u_off"][c + 1]]
-            cs = slice(st["cum_off"][c], st["cum_off"][c + 1])
-            ts = slice(st["tr_off"][c], st["tr_off"][c + 1])
-            with np.errstate(over="ignore", invalid="ignore"):
-                loop(*[a[c] for a in args], u, st["G0"][c], st["G1"][c], st["cum_every"][c],
-                     st["trace_every"][c], st["dwell_edges"][c], st["rparams"][c],
-                     ring[st["ring_off"][c]:st["ring_off"][c + 1]], ring_sum[c], istate[c],
-                     sums[c], share_steps[c],
-                     dwell_counts[c], cum[cs], tr_lo[ts], tr_hi[ts], tr_share[ts], x_out[c], info[c])
+        for c in order:
+            run(c)
     results = []
     for c, pr in enumerate(preps):
         results.append(_result(pr, c, st, sums, share_steps, dwell_counts, cum, tr_lo, tr_hi,
@@ -1165,7 +1216,7 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
 def simulate_batch(cases, *, cumulative_every: float | None = None, trace_every: float | None = None,
                    dwell_edges: ArrayLike | None = None, threads: int | None = None,
                    kernel: str = "numba", closed_form: bool = True) -> BatchResult:
-    """Run many :class:`Case` s in one compiled call, in parallel over cases.
+    """Run many :class:`Case` s in one call, in parallel over cases.
 
     Parameters
     ----------
@@ -1177,7 +1228,8 @@ def simulate_batch(cases, *, cumulative_every: float | None = None, trace_every:
         Threads to use (default ``numba.get_num_threads()``, i.e. every core; at most
         ``numba.config.NUMBA_NUM_THREADS``).
     kernel : {"numba", "python"}, optional
-        The compiled loop (parallel) or the same loop in the interpreter (sequential).
+        The compiled loop (cases in parallel) or the same loop in the interpreter (one case
+        after the other).
     closed_form : bool, optional
         LTI cases under tones without traces in closed form (default True; see
         :func:`simulate_stream`).

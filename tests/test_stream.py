@@ -9,7 +9,7 @@ import scipy.linalg
 from numpy.testing import assert_allclose
 from scipy.integrate import simpson
 
-from fdsc import Band, LTISystem, Piecewise, Sampled, Sinusoids, stream
+from fdsc import Band, LTISystem, Piecewise, Sampled, Sinusoids, SwitchRule, stream
 from fdsc.exceptions import UnstableError, UnstableRunWarning
 from fdsc.paper.data import hf_disturbance, mixed_disturbance, paper_modes, piecewise_disturbance
 from fdsc.random_systems import random_hurwitz, random_spd
@@ -203,6 +203,78 @@ def test_batch_pads_cases_of_different_sizes_and_equals_single_runs():
     assert batch[1].x_final.shape == (3,) and batch[1].trace.z_lo.shape == (21, 2)
     assert batch.time_share.shape == (4, 2) and batch.time_share[1, 1] == 0.0
     assert batch[0].switches > 0
+
+
+def _loop_both_ways(monkeypatch, cases, **opts):
+    """The batch by the general loop and by the loop specialized to its sizes, and the tags."""
+    tags = []
+    real = stream._shape_tag
+
+    def spy(st, kernel):
+        tags.append(real(st, kernel))
+        return tags[-1]
+
+    monkeypatch.setattr(stream, "_shape_tag", spy)
+    monkeypatch.setattr(stream, "UNROLL_MIN_STEPS", 10 ** 15)
+    general = simulate_batch(cases, closed_form=False, **opts)
+    monkeypatch.setattr(stream, "UNROLL_MIN_STEPS", 0)
+    fixed = simulate_batch(cases, closed_form=False, **opts)
+    return general, fixed, tags
+
+
+def _bitwise_equal(a, b):
+    for x, y in zip(a, b, strict=True):
+        assert x.energy == y.energy and x.input_energy == y.input_energy
+        assert x.switches == y.switches and x.sigma_final == y.sigma_final
+        assert np.array_equal(x.x_final, y.x_final) and np.array_equal(x.time_share, y.time_share)
+        assert np.array_equal(x.dwell_counts, y.dwell_counts)
+        assert np.array_equal(x.energy_cum, y.energy_cum)
+        assert np.array_equal(x.input_energy_cum, y.input_energy_cum)
+        if x.trace is not None:
+            assert np.array_equal(x.trace.x_lo, y.trace.x_lo) and np.array_equal(x.trace.z_hi, y.trace.z_hi)
+            assert np.array_equal(x.trace.share, y.trace.share)
+
+
+def test_specialized_loop_equals_the_general_loop_bit_for_bit(monkeypatch):
+    # the paper's loop (the record's most used sizes): the six tones of d_h + ρ d_l, the
+    # piecewise disturbance whose segments have fewer tones (padded with zero tones), a
+    # hysteresis rule, the candidate law and a fixed gain; every size becomes a constant
+    pm = paper_modes()
+    law = dict(law_bands=pm["bands"], law_Q=pm["Q"])
+    cases = [Case(pm["modes"], mixed_disturbance(0.2), 8.0, 1e-3, **law),
+             Case(pm["modes"], piecewise_disturbance(1.0, 0.1, 0.5), 3.0, 1e-3, **law),
+             Case(pm["modes"], mixed_disturbance(0.1), 8.0, 1e-3, rule=SwitchRule.hysteresis(0.1),
+                  x0=[0.05, -0.1], **law),
+             Case(pm["modes"], mixed_disturbance(0.4), 6.0, 1e-3, law="candidate", **law),
+             Case([pm["modes"][0]] * 2, hf_disturbance(), 5.0, 1e-3, **law)]
+    general, fixed, tags = _loop_both_ways(monkeypatch, cases, cumulative_every=0.5)
+    assert tags[0] == ((), ) * 7 and [len(t) for t in tags[1]] == [2, 3, 2, 6, 6, 1, 1]
+    assert general.switches[0] > 100 and general.switches[1] > 0
+    _bitwise_equal(general, fixed)
+
+
+def test_padded_specialized_loop_equals_the_general_loop_bit_for_bit(monkeypatch):
+    # cases of different sizes in one group (two modes, tones, traces): 2 and 3 states and 1 and
+    # 2 outputs padded to the largest, a second-order law (on [ẍ; ẋ; x]) padding the law's vector
+    # of the others, traces (their flag stays general); a first-order-hold input on one mode
+    # forms a group of its own
+    rng = np.random.default_rng(4)
+    two = [LTISystem(random_hurwitz(rng, 2), [[1.0], [0.5]], [[1.0, 0.0]], [[0.0]]) for _ in range(2)]
+    three = [LTISystem(random_hurwitz(rng, 3), [[1.0], [0.0], [0.2]], np.eye(3)[:2], [[0.1], [0.0]])
+             for _ in range(2)]
+    W = [random_spd(rng, 6), random_spd(rng, 6)]
+    W[1][:2, :2] += 3.0 * np.eye(2)
+    cases = [Case(two, mixed_disturbance(0.3), 20.0, 1e-3, law_bands=[Band.lf(1.0), Band.hf(5.0)],
+                  law_Q=[random_spd(rng, 2), random_spd(rng, 2)], x0=[0.1, 0.0]),
+             Case(three, hf_disturbance(), 10.0, 2e-3, law_bands=[Band.lf(1.0), Band.hf(5.0)],
+                  law_Q=[random_spd(rng, 3), random_spd(rng, 3)], x0=[0.0, 0.1, 0.0]),
+             Case(two[0], Sampled(np.sin(np.arange(5001) * 0.01), 2e-3, hold="foh"), 10.0, 2e-3),
+             Case(two, mixed_disturbance(0.5), 10.0, 1e-3, law_weights=W)]
+    general, fixed, tags = _loop_both_ways(monkeypatch, cases, cumulative_every=2.0, trace_every=0.5)
+    sizes = sorted([len(t) for t in tag] for tag in tags[len(tags) // 2:])
+    assert sizes == [[2, 1, 1, 6, 0, 0, 0], [3, 2, 2, 15, 6, 1, 0]]
+    assert all(general.switches[[0, 1, 3]] > 0)
+    _bitwise_equal(general, fixed)
 
 
 _TWO_THREADS = """
