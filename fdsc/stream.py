@@ -1023,7 +1023,6 @@ def _run_loop(preps, kernel, threads):
     tr_lo, tr_hi, tr_share = np.zeros((n_tr, q)), np.zeros((n_tr, q)), np.zeros((n_tr, nm))
     x_out = np.zeros((Cn, n))
     info = np.zeros((Cn, 2), dtype=np.int64)
-    outputs = (sums, share_steps, dwell_counts, cum, tr_lo, tr_hi, tr_share, x_out, info)
     args = [st[k] for k in _INPUTS]
     ring = np.zeros((int(st["ring_off"][-1]), nm))
     ring_sum = np.zeros((Cn, nm))
