@@ -22,8 +22,11 @@ in this order at every sample k:
    never switches).
 
 With all three off the rule is the printed argmax (ties to the lowest index). The same compiled
-function applies the rule in :func:`fdsc.simulate.simulate` and in the streaming simulator
-:mod:`fdsc.stream`.
+functions apply the rule in :func:`fdsc.simulate.simulate` (through ``apply_rule``) and in the
+streaming simulator :mod:`fdsc.stream`: ``window_scores`` for step 1 and ``decide``, a function
+of scalars only, for steps 2 and 3 (the stream's loop does the argmax itself, so that its hot
+path passes no array to a function: numba reference-counts arrays at every such call, which
+had doubled the cost of a step under hysteresis or a dwell time).
 """
 
 import math
@@ -192,51 +195,67 @@ def rule_state(rule: SwitchRule, dt: float, n_modes: int):
 
 
 @njit(cache=True)
-def apply_rule(scores, prev, k, params, ring, ring_sum, istate, eff):
-    """The mode chosen at sample k from the instantaneous ``scores`` (internal; see the module
-    docstring). ``eff`` receives the scores the decision used; the state arrays are updated."""
-    nm = scores.shape[0]
+def window_scores(scores, nm, L, ring, ring_sum, istate, eff):
+    """Step 1 of the rule for a window of ``L > 1`` samples (internal): push the ``scores`` of the
+    first ``nm`` modes into the ring and write their window means into ``eff``."""
+    pos = istate[0]
+    if istate[1] == L:
+        for i in range(nm):
+            ring_sum[i] -= ring[pos, i]
+    for i in range(nm):
+        ring[pos, i] = scores[i]
+        ring_sum[i] += scores[i]
+    pos += 1
+    if pos == L:
+        pos = 0
+        # recompute the sums exactly once per window so that rounding cannot accumulate
+        for i in range(nm):
+            acc = 0.0
+            for r in range(L):
+                acc += ring[r, i]
+            ring_sum[i] = acc
+    istate[0] = pos
+    if istate[1] < L:
+        istate[1] += 1
+    for i in range(nm):
+        eff[i] = ring_sum[i] / istate[1]
+
+
+@njit(cache=True)
+def decide(best, prev, s_best, s_prev, k, last_switch, margin, relative, dwell_steps):
+    """Steps 2 and 3 of the rule (internal): the mode kept at sample k when ``best`` (score
+    ``s_best``) leads and ``prev`` (score ``s_prev``) is active, the last switch having been at
+    sample ``last_switch``. Scalars only: a compiled caller keeps its arrays to itself, which
+    costs nothing per call (arrays passed on would be reference-counted at every sample)."""
+    if dwell_steps > 0 and k - last_switch < dwell_steps:
+        return prev
+    if margin > 0 and best != prev:
+        scale = abs(s_best) + abs(s_prev) if relative else 1.0
+        if not s_best - s_prev > margin * scale:
+            return prev
+    return best
+
+
+@njit(cache=True)
+def apply_rule(scores, nm, prev, k, params, ring, ring_sum, istate, eff):
+    """The mode chosen at sample k from the instantaneous ``scores`` of the first ``nm`` modes
+    (internal; see the module docstring): :func:`window_scores` (if the window is longer than
+    a sample), the argmax (ties to the lowest index), :func:`decide`. ``eff`` receives the scores
+    the decision used; the state arrays are updated."""
     L = int(params[3])
     if L > 1:
-        pos = istate[0]
-        if istate[1] == L:
-            for i in range(nm):
-                ring_sum[i] -= ring[pos, i]
-        for i in range(nm):
-            ring[pos, i] = scores[i]
-            ring_sum[i] += scores[i]
-        pos += 1
-        if pos == L:
-            pos = 0
-            # recompute the sums exactly once per window so that rounding cannot accumulate
-            for i in range(nm):
-                acc = 0.0
-                for r in range(L):
-                    acc += ring[r, i]
-                ring_sum[i] = acc
-        istate[0] = pos
-        if istate[1] < L:
-            istate[1] += 1
-        for i in range(nm):
-            eff[i] = ring_sum[i] / istate[1]
+        window_scores(scores, nm, L, ring, ring_sum, istate, eff)
     else:
         for i in range(nm):
             eff[i] = scores[i]
-    dwell_steps = int(params[2])
-    if dwell_steps > 0 and k - istate[2] < dwell_steps:
-        return prev
-    best = -np.inf
-    choice = prev
+    best = prev
+    top = -np.inf
     for i in range(nm):
-        if eff[i] > best:
-            best = eff[i]
-            choice = i
-    margin = params[0]
-    if margin > 0 and choice != prev:
-        gap = eff[choice] - eff[prev]
-        scale = abs(eff[choice]) + abs(eff[prev]) if params[1] > 0 else 1.0
-        if not gap > margin * scale:
-            choice = prev
+        if eff[i] > top:
+            top = eff[i]
+            best = i
+    choice = decide(best, prev, eff[best], eff[prev], k, istate[2], params[0], params[1] > 0,
+                    int(params[2]))
     if choice != prev:
         istate[2] = k
     return choice

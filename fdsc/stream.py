@@ -70,7 +70,7 @@ from . import _closed_form
 from ._validation import as_choice, as_count, as_positive, as_vector, check_type
 from .exceptions import UnstableError, UnstableRunWarning
 from .frequency import check_no_pole_at
-from .rules import PRINTED, SwitchRule, apply_rule, rule_state
+from .rules import PRINTED, SwitchRule, decide, rule_state, window_scores
 from .signals import Piecewise, Sampled, Sinusoids
 from .simulate import LAWS, _as_modes, _law_weights, _shared_input
 
@@ -128,10 +128,12 @@ def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
     xi = np.zeros(r_xi)
     sc = np.empty(Mt.shape[1])
     eff = np.empty(Mt.shape[1])
-    plain = rparams[0] == 0.0 and rparams[2] == 0.0 and rparams[3] <= 1.0
-    scv = sc[:nm]           # the case's own modes (padded modes of a batch are never chosen)
-    effv = eff[:nm]
-    rsv = ring_sum[:nm]
+    margin = rparams[0]
+    relative = rparams[1] > 0
+    dwell_steps = int(rparams[2])
+    win = int(rparams[3])
+    plain = margin == 0.0 and dwell_steps == 0
+    last_switch = 0
     x = x0.copy()
     xn = np.empty(n)
     bre = np.empty(T)       # phasor at the first point kb of the current block
@@ -224,15 +226,23 @@ def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
                     for q_ in range(nt2):
                         acc += Mt[i, i, q_] * prod[q_]
                     sc[i] = acc
-            if plain:
-                best = -np.inf
-                choice = prev
+            # the rule (fdsc.rules): window means, argmax of the case's own nm modes (padded
+            # modes of a batch are never chosen), dwell time and hysteresis
+            if win > 1:
+                window_scores(sc, nm, win, ring, ring_sum, istate, eff)
                 for i in range(nm):
-                    if sc[i] > best:
-                        best = sc[i]
-                        choice = i
-            else:
-                choice = apply_rule(scv, prev, k, rparams, ring, rsv, istate, effv)
+                    sc[i] = eff[i]
+            best = -np.inf
+            choice = prev
+            for i in range(nm):
+                if sc[i] > best:
+                    best = sc[i]
+                    choice = i
+            if not plain:
+                choice = decide(choice, prev, sc[choice], sc[prev], k, last_switch, margin,
+                                relative, dwell_steps)
+                if choice != prev:
+                    last_switch = k
             if choice != prev:
                 if k > 0:
                     switches += 1

@@ -32,7 +32,8 @@ def scripted(rule, scores, dt=1.0, prev=0):
     eff = np.empty(scores.shape[1])
     out = []
     for k, s in enumerate(scores):
-        prev = apply_rule(np.asarray(s, dtype=float), prev, k, params, ring, ring_sum, istate, eff)
+        prev = apply_rule(np.asarray(s, dtype=float), scores.shape[1], prev, k, params, ring, ring_sum,
+                          istate, eff)
         out.append(prev)
     return out
 
@@ -63,7 +64,7 @@ def test_window_sums_do_not_drift_over_many_wraps():
     params, ring, ring_sum, istate = rule_state(rule, 1.0, 2)
     eff = np.empty(2)
     for k, row in enumerate(s):
-        apply_rule(row, 0, k, params, ring, ring_sum, istate, eff)
+        apply_rule(row, 2, 0, k, params, ring, ring_sum, istate, eff)
     # reference: the plain mean of the last 7 samples
     assert_allclose(eff, s[-7:].mean(axis=0), rtol=1e-12)
 
