@@ -368,7 +368,7 @@ def _kernel_numba(Phi, left, right, A, B, d, dd, W, x0, sigma0, candidate, rpara
         xk = x[k]
         if n_modes > 1:
             _scores(A, B, W, xk, d[k], dd[k], prev, candidate, v, sc)
-            prev = apply_rule(sc, prev, k, rparams, ring, ring_sum, istate, eff)
+            prev = apply_rule(sc, sc.shape[0], prev, k, rparams, ring, ring_sum, istate, eff)
         sigma[k] = prev
         if k + 1 < N:
             for r in range(n):
@@ -401,7 +401,7 @@ def _kernel_numpy(Phi, left, right, A, B, d, dd, W, x0, sigma0, candidate, rpara
                 parts.insert(0, np.einsum("irc,ic->ir", Am, xd) + B * dd[k])
             v = np.concatenate(parts, axis=1)
             scores = np.einsum("ir,irc,ic->i", v, W, v)
-            prev = apply_rule.py_func(scores, prev, k, rparams, ring, ring_sum, istate, eff)
+            prev = apply_rule.py_func(scores, scores.shape[0], prev, k, rparams, ring, ring_sum, istate, eff)
         sigma[k] = prev
         if k + 1 < N:
             x[k + 1] = right[prev, k] + Phi[prev] @ (xk - left[prev, k])
