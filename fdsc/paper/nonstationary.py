@@ -2,7 +2,7 @@
 paper Fig. 7 bisected, and the paper's objectives (P.1) and (P.2) measured.
 
 Every run goes through the library's streaming batch simulator (:func:`fdsc.simulate_batch`):
-one compiled call per sweep, running integrals on a coarse grid for the windows of (P.2).
+one batch per sweep, running integrals on a coarse grid for the windows of (P.2).
 """
 
 from dataclasses import dataclass
