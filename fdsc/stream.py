@@ -919,7 +919,7 @@ _INPUTS = ("N", "dt", "nm", "Phi", "C", "D", "Mt", "law", "sigma0", "x0", "kind"
            "seg_start", "seg_nt", "omega", "amp", "phase", "Gr", "Gi", "Rre", "Rim")
 
 
-def _run(preps, kernel, threads, closed_form=True):
+def _run(preps, kernel, threads, closed_form=True, specialize=None):
     """Results of every prepared case: by the closed form where it applies (if allowed), by the
     loop otherwise."""
     closed = [_closed_result(q) if closed_form and _closed_form_applies(q) else None for q in preps]
@@ -931,7 +931,8 @@ def _run(preps, kernel, threads, closed_form=True):
         q = preps[i]
         groups.setdefault((q["nm"], q["kind"] == _KIND_SINES, q["trace_every"] == 0), []).append(i)
     for members in groups.values():
-        for i, res in zip(members, _run_loop([preps[i] for i in members], kernel, threads), strict=True):
+        for i, res in zip(members, _run_loop([preps[i] for i in members], kernel, threads,
+                                                    specialize), strict=True):
             closed[i] = res
     return closed
 
@@ -991,12 +992,13 @@ UNROLL_MAX = 8
 UNROLL_MIN_STEPS = 1_000_000
 
 
-def _shape_tag(st, kernel):
+def _shape_tag(st, kernel, specialize=None):
     """The ``shape`` argument of the compiled loop for the stacked cases ``st``.
 
     The general loop (``((),) * 7``) reads every size from its arrays, so its small inner loops
     (over the n states, p outputs, T tones, modes) have trip counts unknown to the compiler.
-    For a call of at least :data:`UNROLL_MIN_STEPS` steps by the compiled kernel, each size up
+    For a call by the compiled kernel (``specialize`` True, or None and at least
+    :data:`UNROLL_MIN_STEPS` steps), each size up
     to :data:`UNROLL_MAX` that all cases share (after padding: n, p, T and the law's vector are
     padded to the largest case, the number of modes only if every case has it) becomes the
     length of a tuple: a constant of the compiled code, one compiled loop per combination. The
@@ -1004,7 +1006,9 @@ def _shape_tag(st, kernel):
     bit (the tests check this): padded tones add exact zeros.
     """
     general = ((),) * 7
-    if kernel != "numba" or int(st["N"].sum()) < UNROLL_MIN_STEPS:
+    if specialize is None:
+        specialize = int(st["N"].sum()) >= UNROLL_MIN_STEPS
+    if kernel != "numba" or not specialize:
         return general
 
     def fixed(size):
@@ -1020,9 +1024,9 @@ def _shape_tag(st, kernel):
             (0,) if np.all(sines) else (), (0,) if np.all(st["trace_every"] == 0) else ())
 
 
-def _run_loop(preps, kernel, threads):
+def _run_loop(preps, kernel, threads, specialize=None):
     st, dims = _stack(preps)
-    shape = _shape_tag(st, kernel)
+    shape = _shape_tag(st, kernel, specialize)
     Cn, n, p, nm, nb = len(preps), dims["n"], dims["p"], dims["nm"], dims["nb"]
     q = n + p + 1
     sums = np.zeros((Cn, 3))
@@ -1118,7 +1122,7 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
                     rule: SwitchRule = PRINTED, law_weights: list | None = None,
                     cumulative_every: float | None = None, trace_every: float | None = None,
                     dwell_edges: ArrayLike | None = None, kernel: str = "numba",
-                    closed_form: bool = True) -> StreamResult:
+                    closed_form: bool = True, specialize: bool | None = None) -> StreamResult:
     """Simulate one LTI or switched loop on ``0, dt, …, horizon`` and return its reductions.
 
     The same exact step and the same sampled switching law (paper eq. (31)) as
@@ -1162,6 +1166,12 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
     closed_form : bool, optional
         Sum an LTI run (one mode) under a Sinusoids or Piecewise disturbance, with no traces,
         in closed form instead of stepping through it (default True; see Notes).
+    specialize : bool, optional
+        Compile the loop for the run's sizes (states, outputs, modes, law vector, tones up to
+        :data:`UNROLL_MAX`): about twice as fast per step, the same numbers bit for bit, but a
+        first use for new sizes compiles for a few seconds (then numba's disk cache has it).
+        Default None: only for runs of at least :data:`UNROLL_MIN_STEPS` steps. Ignored by the
+        ``"python"`` kernel.
 
     Returns
     -------
@@ -1211,10 +1221,11 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
     """
     as_choice("kernel", kernel, STREAM_KERNELS)
     check_type("closed_form", closed_form, (bool, np.bool_), "True or False")
+    check_type("specialize", specialize, (bool, np.bool_, type(None)), "True, False or None")
     case = Case(modes, d, horizon, dt, x0=x0, law_bands=law_bands, law_Q=law_Q, law=law,
                 sigma0=sigma0, rule=rule, law_weights=law_weights)
     pr = _prepare(case, "", cumulative_every, trace_every, dwell_edges)
-    (res,) = _run([pr], kernel, 1, closed_form)
+    (res,) = _run([pr], kernel, 1, closed_form, specialize)
     if res.diverged_at is not None:
         raise UnstableError(f"simulate_stream: the state overflowed at t = {res.diverged_at:g} s; "
                             "the loop diverges and no finite energy summarizes it")
@@ -1224,7 +1235,8 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
 
 def simulate_batch(cases, *, cumulative_every: float | None = None, trace_every: float | None = None,
                    dwell_edges: ArrayLike | None = None, threads: int | None = None,
-                   kernel: str = "numba", closed_form: bool = True) -> BatchResult:
+                   kernel: str = "numba", closed_form: bool = True,
+                   specialize: bool | None = None) -> BatchResult:
     """Run many :class:`Case` s in one call, in parallel over cases.
 
     Parameters
@@ -1242,6 +1254,10 @@ def simulate_batch(cases, *, cumulative_every: float | None = None, trace_every:
     closed_form : bool, optional
         LTI cases under tones without traces in closed form (default True; see
         :func:`simulate_stream`).
+    specialize : bool, optional
+        As in :func:`simulate_stream`, for each group of cases with the same number of modes,
+        kind of input and traces or none (default None: groups of at least
+        :data:`UNROLL_MIN_STEPS` steps).
 
     Returns
     -------
@@ -1270,6 +1286,7 @@ def simulate_batch(cases, *, cumulative_every: float | None = None, trace_every:
     """
     as_choice("kernel", kernel, STREAM_KERNELS)
     check_type("closed_form", closed_form, (bool, np.bool_), "True or False")
+    check_type("specialize", specialize, (bool, np.bool_, type(None)), "True, False or None")
     if isinstance(cases, Case) or not hasattr(cases, "__iter__"):
         raise TypeError(f"cases must be a sequence of Case, found {type(cases).__name__}")
     cases = list(cases)
@@ -1279,7 +1296,7 @@ def simulate_batch(cases, *, cumulative_every: float | None = None, trace_every:
     threads = min(threads, numba.config.NUMBA_NUM_THREADS)
     preps = [_prepare(c, f"cases[{i}]: ", cumulative_every, trace_every, dwell_edges)
              for i, c in enumerate(cases)]
-    results = _run(preps, kernel, threads, closed_form)
+    results = _run(preps, kernel, threads, closed_form, specialize)
     batch = BatchResult(cases, results)
     if batch.diverged.any():
         bad = np.flatnonzero(batch.diverged)

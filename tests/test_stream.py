@@ -210,15 +210,13 @@ def _loop_both_ways(monkeypatch, cases, **opts):
     tags = []
     real = stream._shape_tag
 
-    def spy(st, kernel):
-        tags.append(real(st, kernel))
+    def spy(st, kernel, specialize):
+        tags.append(real(st, kernel, specialize))
         return tags[-1]
 
     monkeypatch.setattr(stream, "_shape_tag", spy)
-    monkeypatch.setattr(stream, "UNROLL_MIN_STEPS", 10 ** 15)
-    general = simulate_batch(cases, closed_form=False, **opts)
-    monkeypatch.setattr(stream, "UNROLL_MIN_STEPS", 0)
-    fixed = simulate_batch(cases, closed_form=False, **opts)
+    general = simulate_batch(cases, closed_form=False, specialize=False, **opts)
+    fixed = simulate_batch(cases, closed_form=False, specialize=True, **opts)
     return general, fixed, tags
 
 
@@ -577,3 +575,26 @@ def test_closed_form_flag_is_checked():
         simulate_stream(SCALAR, Sinusoids([1.0], [1.0]), 1.0, 1e-3, closed_form="yes")
     with pytest.raises(TypeError, match="closed_form must be True or False"):
         simulate_batch([Case(SCALAR, Sinusoids([1.0], [1.0]), 1.0, 1e-3)], closed_form=1)
+
+
+def test_specialize_flag_is_checked():
+    with pytest.raises(TypeError, match="specialize must be True, False or None"):
+        simulate_stream(SCALAR, Sinusoids([1.0], [1.0]), 1.0, 1e-3, specialize="yes")
+    with pytest.raises(TypeError, match="specialize must be True, False or None"):
+        simulate_batch([Case(SCALAR, Sinusoids([1.0], [1.0]), 1.0, 1e-3)], specialize=1)
+
+
+def test_by_default_only_long_runs_are_specialized(monkeypatch):
+    tags = []
+    real = stream._shape_tag
+    monkeypatch.setattr(stream, "_shape_tag", lambda *a: tags.append(real(*a)) or tags[-1])
+    pm = paper_modes()
+    kw = dict(law_bands=pm["bands"], law_Q=pm["Q"])
+    short = simulate_stream(pm["modes"], mixed_disturbance(0.1), 10.0, 1e-3, **kw)
+    steps = stream.UNROLL_MIN_STEPS
+    for points in (steps - 1, steps):       # a horizon of (N − 1)·dt has N points
+        simulate_stream(pm["modes"], mixed_disturbance(0.1), (points - 1) * 1e-3, 1e-3, **kw)
+    forced = simulate_stream(pm["modes"], mixed_disturbance(0.1), 10.0, 1e-3, specialize=True, **kw)
+    # specialized: 2 states, 3 outputs, 2 modes, 6 law products, 6 tones, sines, no traces
+    assert [sum(len(t) for t in tag) for tag in tags] == [0, 0, 21, 21]
+    assert forced.energy == short.energy and forced.switches == short.switches
