@@ -1,6 +1,8 @@
 r"""Check a built book: images exist and are non-empty, internal links resolve, nothing is fetched
 from the web when a page loads (no external scripts, stylesheets or images), MathJax is the
-book's own copy, and no page shows TeX that was not typeset.
+book's own copy, no page shows TeX that was not typeset, and no page's text holds an emoji or
+pictograph (U+2600–U+27BF, U+2B00–U+2BFF, U+1F000–U+1FAFF): a machine without an emoji font,
+such as the browser test's, draws one as an empty box (arrows and mathematical symbols are fine).
 
 Usage: ``python tests/check_book_html.py book/_build/html``. Exits non-zero on any problem.
 Run by ``.ci/run`` after the book build (a figure that silently fails to render, e.g. when a
@@ -67,6 +69,7 @@ _CONTROL_WORD = re.compile(r"\\(?:[A-Za-z]{2,}|[()\[\]])")
 _TEX_IN_PAIR = re.compile(r"\\[A-Za-z]|\S[_^][{\\A-Za-z0-9]")
 _PAIR_MAX = 80
 _CONTEXT = 40
+_PICTOGRAPH = re.compile("[\u2600-\u27bf\u2b00-\u2bff\U0001f000-\U0001faff]")
 
 
 def _hidden(tag, attrs):
@@ -213,6 +216,10 @@ def check(root):
             target = (page.parent / unquote(u.path)).resolve()
             if not target.exists():
                 problems.append(f"{page.name}: broken link {href}")
+        glyphs = sorted(set(_PICTOGRAPH.findall(c.text)))
+        if glyphs:
+            problems.append(f"{page.name}: emoji or pictographs in visible text (no font may "
+                            f"draw them): {' '.join(glyphs)}")
         tex = raw_tex_snippets(c.text)
         problems += [f"{page.name}: raw TeX in visible text: '{s}'" for s in tex[:MAX_TEX_REPORTS]]
         if len(tex) > MAX_TEX_REPORTS:
@@ -223,5 +230,5 @@ def check(root):
 if __name__ == "__main__":
     found = check(sys.argv[1] if len(sys.argv) > 1 else "book/_build/html")
     print("\n".join(found) or "book HTML: images present, internal links resolve, no web loads, "
-                              "no raw TeX")
+                              "no raw TeX, no emoji")
     sys.exit(1 if found else 0)

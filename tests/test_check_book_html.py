@@ -42,6 +42,17 @@ def test_problems_are_reported(tmp_path):
     assert "does not load the book's own MathJax" in found
 
 
+def test_emoji_in_visible_text_are_reported_arrows_and_code_are_not(tmp_path):
+    # MyST-NB's execution table once showed ✅ in its Status column (book/_ext/offline.py now
+    # writes "ok"); a machine without an emoji font draws it as an empty box
+    write(tmp_path, "environment.html", "<table><tr><td>baselines</td><td>✅</td></tr>"
+          "<tr><td>x</td><td>❌</td></tr></table><p>A → B ⇒ C ≤ D</p><pre>print('🙂')</pre>")
+    write(tmp_path, "clean.html", "<p>A → B ⇒ C ≤ D, σ ∈ {1, 2}</p><code>✅</code>")
+    found = check(tmp_path)
+    assert found == ["environment.html: emoji or pictographs in visible text (no font may draw "
+                     "them): ✅ ❌"]
+
+
 def test_raw_tex_in_paragraph_list_item_and_citation_is_reported(tmp_path):
     write(tmp_path, "page.html",
           f"<p>{FILLER} with slack $${SMALLMATRIX}$$ in the paragraph. {FILLER}</p>"

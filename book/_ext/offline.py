@@ -5,6 +5,10 @@
    Jupyter Book adds sphinx-thebe regardless, and sphinx-thebe writes its inline script twice per
    page (a console error: ``THEBE_JS_URL`` declared twice) naming a CDN URL.
 
+3. The Status column of MyST-NB's execution table (``{nb-exec-table}``, page 'environment')
+   says ``ok`` / ``failed`` in words instead of the emoji ✅ / ❌, which a machine without an
+   emoji font (such as the browser test's) draws as an empty box.
+
 MathJax 3 comes from the PyPI package ``django-static-mathjax`` (it ships MathJax's ``es5``
 build as plain files; Django itself is not needed). After an HTML build this extension copies
 the single-file ``tex-svg-full.js`` component (TeX input with every extension, SVG output, so no
@@ -16,7 +20,9 @@ import importlib.util
 import shutil
 from pathlib import Path
 
+from docutils import nodes
 from sphinx.errors import ExtensionError
+from sphinx.transforms.post_transforms import SphinxPostTransform
 
 BUNDLE = "tex-svg-full.js"
 ON_DEMAND = ("a11y", "ui", "input/tex/extensions")
@@ -60,9 +66,28 @@ def _drop_thebe(app, pagename, templatename, context, doctree):
     scripts[:] = keep
 
 
+#: The execution table's status symbols and the words that replace them.
+STATUS_WORDS = {"✅": "ok", "❌": "failed"}
+
+
+class StatusInWords(SphinxPostTransform):
+    """Replace the execution table's status emoji by words (runs after MyST-NB has built the
+    table, priority 8, and before the references are resolved, priority 10)."""
+
+    default_priority = 9
+
+    def run(self, **kwargs):
+        for table in self.document.findall(nodes.table):
+            for text in list(table.findall(nodes.Text)):
+                word = STATUS_WORDS.get(text.astext().strip())
+                if word is not None:
+                    text.parent.replace(text, nodes.Text(word))
+
+
 def setup(app):
     mathjax_es5_dir()  # fail at start-up, not after a long build
     app.connect("config-inited", _check_path)
     app.connect("html-page-context", _drop_thebe, priority=900)
     app.connect("build-finished", _copy_mathjax)
+    app.add_post_transform(StatusInWords)
     return {"version": "1.0", "parallel_read_safe": True, "parallel_write_safe": True}
