@@ -987,9 +987,12 @@ def _closed_result(pr):
 #: Largest size for which the compiled loop is specialized (see :func:`_shape_tag`): states,
 #: outputs, tones and modes up to this many have loops of a fixed trip count.
 UNROLL_MAX = 8
-#: Fewest steps in one call for which the specialized loop is used: compiling it for new sizes
-#: costs a few seconds once (then numba's disk cache has it), which short runs would not repay.
-UNROLL_MIN_STEPS = 1_000_000
+#: Fewest steps in one call (one group of cases) for which the specialized loop is used by
+#: default: compiling it for new sizes costs about 4 s once (then numba's disk cache has it) and
+#: saves about 35 ns per step on the paper's loop, so shorter calls would not repay a first
+#: compilation (the record's calls of fewer steps add up to 3e7 steps, and would need 8 more
+#: compiled loops).
+UNROLL_MIN_STEPS = 10_000_000
 
 
 def _shape_tag(st, kernel, specialize=None):
