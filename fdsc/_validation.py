@@ -163,9 +163,10 @@ def as_nonnegative(name, value):
 
 def as_count(name, value, minimum=1):
     """Return ``value`` as an int ≥ ``minimum`` (integral numbers only) or raise ``ValueError``."""
-    if isinstance(value, bool | np.bool_) or not isinstance(value, numbers.Integral):
-        if not (isinstance(value, numbers.Real) and float(value).is_integer()):
-            raise ValueError(f"{name} must be an integer >= {minimum}, but found {value!r}")
+    integral = isinstance(value, numbers.Integral) or (
+        isinstance(value, numbers.Real) and float(value).is_integer())
+    if isinstance(value, bool | np.bool_) or not integral:
+        raise ValueError(f"{name} must be an integer >= {minimum}, but found {value!r}")
     k = int(value)
     if k < minimum:
         raise ValueError(f"{name} must be an integer >= {minimum}, but found {k}")
