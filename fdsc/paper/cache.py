@@ -144,12 +144,19 @@ def cached(fn: Callable) -> Callable:
             return fn(*args, **kwargs)
         # the key names every argument with its default filled in, so that f(), f(21) and
         # f(n=21) share one value
-        bound = signature.bind(*args, **kwargs)
+        try:
+            bound = signature.bind(*args, **kwargs)
+        except TypeError:
+            return fn(*args, **kwargs)      # Python's own message, naming the function
         bound.apply_defaults()
-        if not _plain(tuple(bound.arguments.values())):
+        # a **kwargs parameter binds to a dict: key on its items
+        values = tuple(tuple(sorted(v.items())) if isinstance(v, dict) else v
+                       for v in bound.arguments.values())
+        if not _plain(values):
             return fn(*args, **kwargs)
         key = hashlib.sha256(repr((fingerprint(), fn.__module__, fn.__qualname__,
-                                   sorted(bound.arguments.items()))).encode()).hexdigest()[:24]
+                                   sorted(zip(bound.arguments, values, strict=True)))).encode()
+                             ).hexdigest()[:24]
         path = Path(folder) / f"{fn.__module__}.{fn.__qualname__}-{key}.pickle"
         path.parent.mkdir(parents=True, exist_ok=True)
         with file_lock(path.with_name(path.name + ".lock")):

@@ -48,6 +48,22 @@ def test_the_same_arguments_spelled_differently_share_one_value(monkeypatch, tmp
     assert len(list(tmp_path.glob("*.pickle"))) == 2
 
 
+@cached
+def _labelled(x, **labels):
+    CALLS.append((x, labels))
+    return [x, sorted(labels)]
+
+
+def test_keyword_arguments_are_keyed_and_a_wrong_call_names_the_function(monkeypatch, tmp_path):
+    monkeypatch.setenv(CACHE_ENV, str(tmp_path))
+    CALLS.clear()
+    assert _labelled(1, a=2, b=3) == _labelled(1, b=3, a=2) == [1, ["a", "b"]]
+    _labelled(1, a=2)
+    assert len(CALLS) == 2 and len(list(tmp_path.glob("*.pickle"))) == 2
+    with pytest.raises(TypeError, match="_square"):
+        _square(1.0, 2.0)       # shift is keyword-only: Python's own message
+
+
 def test_arguments_that_are_not_plain_bypass_the_cache(monkeypatch, tmp_path):
     monkeypatch.setenv(CACHE_ENV, str(tmp_path))
     CALLS.clear()
