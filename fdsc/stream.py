@@ -55,6 +55,7 @@ the GIL, from a pool of Python threads, the longest cases first; the results com
 long enough to repay a compilation (:data:`UNROLL_MIN_STEPS`), with the same results bit for bit.
 """
 
+import functools
 import math
 import warnings
 from concurrent.futures import ThreadPoolExecutor
@@ -385,7 +386,7 @@ def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
 
 
 
-# nogil: the cases of a batch run on Python threads (see _run_loop), each in compiled code
+# nogil: the cases of a batch run on Python threads (see _run), each in compiled code
 _case_numba = njit(cache=True, nogil=True)(_case_loop)
 
 
@@ -836,6 +837,19 @@ def _law_forms(A, B, W, f):
     return Mt
 
 
+def _packed_positions(n_own, f_own, n, f):
+    """Where the packed upper triangle of a form on ``ξ = [x; d(; ḋ)]`` with ``n_own`` states and
+    law order ``f_own`` goes in that of ``n ≥ n_own`` states and order ``f ≥ f_own``: the states
+    keep their indices, d and ḋ move from ``n_own`` on to ``n`` on."""
+    r_own, r = n_own + f_own - 1, n + f - 1
+    idx = np.arange(r_own)
+    idx = np.where(idx < n_own, idx, idx - n_own + n)
+    a, b = np.triu_indices(r_own)
+    ia, ib = idx[a], idx[b]
+    # row-major upper triangle of an r × r matrix: row a starts at a·r − a(a − 1)/2
+    return ia * r - ia * (ia - 1) // 2 + (ib - ia)
+
+
 def _stack(preps):
     """Pad every case to common sizes and concatenate the ragged outputs."""
     C = len(preps)
@@ -887,7 +901,11 @@ def _stack(preps):
                     st["W"][c, i, (a + f - g) * n:(a + f - g) * n + qn,
                             (b + f - g) * n:(b + f - g) * n + qn] = W[i, a * qn:(a + 1) * qn,
                                                                      b * qn:(b + 1) * qn]
-        st["Mt"][c] = _law_forms(st["A"][c], st["B"][c], st["W"][c], f).transpose(0, 2, 1)
+        # the forms on ξ from the case's own matrices, then placed in the padded ξ = [x; d; ḋ]
+        # (computed on padded matrices, the products would round differently with the padding,
+        # and a near-tie of the scores could switch otherwise than in the case's own run)
+        own = _law_forms(q["A"], q["B"], W, g).transpose(0, 2, 1)
+        st["Mt"][c, :qm, :qm][..., _packed_positions(qn, g, n, f)] = own
         st["rparams"][c] = q["rparams"]
         st["x0"][c, :qn] = q["x0"]
         st["G0"][c, :qm, :qn] = q["G0"]
@@ -930,9 +948,21 @@ def _run(preps, kernel, threads, closed_form=True, specialize=None):
     for i in looped:
         q = preps[i]
         groups.setdefault((q["nm"], q["kind"] == _KIND_SINES, q["trace_every"] == 0), []).append(i)
-    for members in groups.values():
-        for i, res in zip(members, _run_loop([preps[i] for i in members], kernel, threads,
-                                                    specialize), strict=True):
+    planned = [(members, _loop_plan([preps[i] for i in members], kernel, specialize))
+               for members in groups.values()]
+    # every group's cases on one pool of threads, the longest first, so that the threads finish
+    # together; each case writes only its own rows of its group's outputs
+    runs = sorted(((steps, run) for _, plan in planned for steps, run in plan[0]),
+                  key=lambda job: -job[0])
+    if kernel == "numba" and len(runs) > 1 and threads > 1:
+        with ThreadPoolExecutor(min(threads, len(runs))) as pool:
+            for _ in pool.map(lambda job: job[1](), runs):
+                pass
+    else:
+        for _, run in runs:
+            run()
+    for members, (_, results) in planned:
+        for i, res in zip(members, results(), strict=True):
             closed[i] = res
     return closed
 
@@ -1000,17 +1030,17 @@ def _shape_tag(st, kernel, specialize=None):
 
     The general loop (``((),) * 7``) reads every size from its arrays, so its small inner loops
     (over the n states, p outputs, T tones, modes) have trip counts unknown to the compiler.
-    For a call by the compiled kernel (``specialize`` True, or None and at least
-    :data:`UNROLL_MIN_STEPS` steps), each size up
-    to :data:`UNROLL_MAX` that all cases share (after padding: n, p, T and the law's vector are
-    padded to the largest case, the number of modes only if every case has it) becomes the
-    length of a tuple: a constant of the compiled code, one compiled loop per combination. The
-    arithmetic is the same, in the same order, so the results are the general loop's bit for
-    bit (the tests check this): padded tones add exact zeros.
+    For a group of cases run by the compiled kernel (``specialize`` True, or None and at least
+    :data:`UNROLL_MIN_STEPS` steps in the group), each size up to :data:`UNROLL_MAX` that all
+    cases share (after padding: n, p, T and the law's vector are padded to the largest case,
+    the number of modes only if every case has it) becomes the length of a tuple: a constant
+    of the compiled code, one compiled loop per combination. The arithmetic is the same, in the
+    same order, so the results are the general loop's bit for bit (the tests check this):
+    padded tones add exact zeros.
     """
     general = ((),) * 7
     if specialize is None:
-        specialize = int(st["N"].sum()) >= UNROLL_MIN_STEPS
+        specialize = int((st["N"] - 1).sum()) >= UNROLL_MIN_STEPS   # N points: N − 1 steps
     if kernel != "numba" or not specialize:
         return general
 
@@ -1027,7 +1057,10 @@ def _shape_tag(st, kernel, specialize=None):
             (0,) if np.all(sines) else (), (0,) if np.all(st["trace_every"] == 0) else ())
 
 
-def _run_loop(preps, kernel, threads, specialize=None):
+def _loop_plan(preps, kernel, specialize=None):
+    """The loop's runs of a group of cases: ``([(points, run), ...], results)``, each ``run()``
+    stepping one case into the group's output arrays and ``results()`` reading them once every
+    run is done."""
     st, dims = _stack(preps)
     shape = _shape_tag(st, kernel, specialize)
     Cn, n, p, nm, nb = len(preps), dims["n"], dims["p"], dims["nm"], dims["nb"]
@@ -1046,7 +1079,7 @@ def _run_loop(preps, kernel, threads, specialize=None):
     istate = np.zeros((Cn, 3), dtype=np.int64)
     loop = _case_numba if kernel == "numba" else _case_loop
 
-    def run(c):
+    def run_case(c):
         u = st["u_all"][st["u_off"][c]:st["u_off"][c + 1]]
         cs = slice(st["cum_off"][c], st["cum_off"][c + 1])
         ts = slice(st["tr_off"][c], st["tr_off"][c + 1])
@@ -1058,20 +1091,11 @@ def _run_loop(preps, kernel, threads, specialize=None):
                  dwell_counts[c], cum[cs], tr_lo[ts], tr_hi[ts], tr_share[ts], x_out[c], info[c],
                  shape)
 
-    # longest first, so that the threads finish together; each case writes only its own rows
-    order = sorted(range(Cn), key=lambda c: -int(st["N"][c]))
-    if kernel == "numba" and Cn > 1 and threads > 1:
-        with ThreadPoolExecutor(min(threads, Cn)) as pool:
-            for _ in pool.map(run, order):
-                pass
-    else:
-        for c in order:
-            run(c)
-    results = []
-    for c, pr in enumerate(preps):
-        results.append(_result(pr, c, st, sums, share_steps, dwell_counts, cum, tr_lo, tr_hi,
-                               tr_share, x_out, info))
-    return results
+    def results():
+        return [_result(pr, c, st, sums, share_steps, dwell_counts, cum, tr_lo, tr_hi, tr_share,
+                        x_out, info) for c, pr in enumerate(preps)]
+
+    return [(int(st["N"][c]), functools.partial(run_case, c)) for c in range(Cn)], results
 
 
 def _result(pr, c, st, sums, share_steps, dwell_counts, cum, tr_lo, tr_hi, tr_share, x_out, info):
@@ -1084,14 +1108,17 @@ def _result(pr, c, st, sums, share_steps, dwell_counts, cum, tr_lo, tr_hi, tr_sh
     trace = None
     if te:
         ts = slice(st["tr_off"][c], st["tr_off"][c + 1])
-        lo, hi, sh = tr_lo[ts], tr_hi[ts], tr_share[ts, :nm]
-        counts = np.minimum(te, N - np.arange(lo.shape[0]) * te).astype(float)
+        lo, hi, sh = tr_lo[ts].copy(), tr_hi[ts].copy(), tr_share[ts, :nm].copy()
+        start = np.arange(lo.shape[0]) * te
+        last = N - 1 if diverged < 0 else diverged      # the last point written
+        counts = np.clip(last + 1 - start, 1, te).astype(float)
+        # bins after the point where the state overflowed were never written: not a value
+        lo[start > last], hi[start > last], sh[start > last] = np.nan, np.nan, np.nan
         nn = st["B"].shape[1]
         cols_x, cols_z = slice(0, n), slice(nn, nn + p)
         dcol = nn + st["D"].shape[1]
-        trace = Trace(np.arange(lo.shape[0]) * te * dt, lo[:, cols_x].copy(), hi[:, cols_x].copy(),
-                      lo[:, cols_z].copy(), hi[:, cols_z].copy(), lo[:, dcol].copy(),
-                      hi[:, dcol].copy(), sh / counts[:, None])
+        trace = Trace(start * dt, lo[:, cols_x], hi[:, cols_x], lo[:, cols_z], hi[:, cols_z],
+                      lo[:, dcol], hi[:, dcol], sh / counts[:, None])
     if diverged >= 0:
         # rows at and after the point where the state overflowed were never written
         keep = np.arange(t_cum.size) * ce < diverged

@@ -205,6 +205,29 @@ def test_batch_pads_cases_of_different_sizes_and_equals_single_runs():
     assert batch[0].switches > 0
 
 
+def test_a_near_tie_switches_the_same_in_a_padded_batch_as_alone():
+    # two modes whose scores differ in the last bits (W and W·(1 + 1e-15), A and A + 1e-9·noise):
+    # the law's forms must be those of the case's own run even when a bigger case pads the batch
+    # to 10 states (they were once computed on the padded matrices, whose products round
+    # otherwise for n ≥ 5: 118 switches alone, 110 in the batch)
+    rng = np.random.default_rng(0)
+    n = 7
+    B, C, A = rng.standard_normal((n, 1)), rng.standard_normal((1, n)), random_hurwitz(rng, n)
+    W = random_spd(rng, 2 * n)
+    modes = [LTISystem(A, B, C, [[0.0]]),
+             LTISystem(A + 1e-9 * rng.standard_normal((n, n)), B, C, [[0.0]])]
+    d = Sinusoids([1.0, 0.5], [3.0, 17.0])
+    case = Case(modes, d, 5.0, 1e-3, law_weights=[W, W * (1 + 1e-15)], x0=np.full(n, 0.1))
+    big = LTISystem(-np.eye(10), np.ones((10, 1)), np.ones((1, 10)), [[0.0]])
+    pad = Case([big, big], d, 0.01, 1e-3, law_weights=[np.eye(20)] * 2)
+    alone = simulate_stream(case.modes, d, 5.0, 1e-3, x0=case.x0, law_weights=case.law_weights)
+    for batch in (simulate_batch([case, pad], threads=1), simulate_batch([pad, case], threads=2)):
+        res = batch[0] if batch[0].x_final.size == n else batch[1]
+        assert res.switches == alone.switches and res.energy == alone.energy
+        assert np.array_equal(res.x_final, alone.x_final)
+    assert alone.switches > 50
+
+
 def _loop_both_ways(monkeypatch, cases, **opts):
     """The batch by the general loop and by the loop specialized to its sizes, and the tags."""
     tags = []
@@ -348,6 +371,14 @@ def test_divergence_is_an_error_alone_and_a_flag_in_a_batch():
     assert np.all(np.diff(batch[0].energy_cum) > 0)
     with pytest.raises(UnstableError):
         batch[0].l2_ratio()
+    # traces: the bins after the overflow were never written and say so (NaN, not stale zeros);
+    # the bins before it hold the samples, each bin's mode shares summing to 1
+    with pytest.warns(UnstableRunWarning, match="1 of 2 cases diverged"):
+        traced = simulate_batch(cases, trace_every=0.5)[0].trace
+    after = traced.t > batch[0].diverged_at
+    assert after.any() and np.isnan(traced.x_hi[after]).all() and np.isnan(traced.share[after]).all()
+    assert np.isfinite(traced.x_hi[~after][:-1]).all() and np.all(traced.x_hi[~after][1:-1] > 0)
+    assert_allclose(traced.share[~after].sum(axis=1), 1.0, rtol=1e-15)
     # finite but growing: a warning names the mode
     slow = LTISystem([[0.01]], [[1.0]], [[1.0]], [[0.0]])
     with pytest.warns(UnstableRunWarning, match="mode 0 is not Hurwitz"):
@@ -574,6 +605,12 @@ def test_closed_form_flag_is_checked():
         simulate_batch([Case(SCALAR, Sinusoids([1.0], [1.0]), 1.0, 1e-3)], closed_form=1)
 
 
+@pytest.mark.parametrize("threads", [0, -1, 1.5, True, False, np.True_, "2"])
+def test_threads_must_be_a_whole_number_not_a_bool(threads):
+    with pytest.raises(ValueError, match="threads must be an integer >= 1"):
+        simulate_batch([Case(SCALAR, Sinusoids([1.0], [1.0]), 1.0, 1e-3)], threads=threads)
+
+
 def test_specialize_flag_is_checked():
     with pytest.raises(TypeError, match="specialize must be True, False or None"):
         simulate_stream(SCALAR, Sinusoids([1.0], [1.0]), 1.0, 1e-3, specialize="yes")
@@ -589,8 +626,8 @@ def test_by_default_only_long_runs_are_specialized(monkeypatch):
     kw = dict(law_bands=pm["bands"], law_Q=pm["Q"])
     short = simulate_stream(pm["modes"], mixed_disturbance(0.1), 10.0, 1e-3, **kw)
     steps = stream.UNROLL_MIN_STEPS
-    for points in (steps - 1, steps):       # a horizon of (N − 1)·dt has N points
-        simulate_stream(pm["modes"], mixed_disturbance(0.1), (points - 1) * 1e-3, 1e-3, **kw)
+    for n_steps in (steps - 1, steps):
+        simulate_stream(pm["modes"], mixed_disturbance(0.1), n_steps * 1e-3, 1e-3, **kw)
     forced = simulate_stream(pm["modes"], mixed_disturbance(0.1), 10.0, 1e-3, specialize=True, **kw)
     # specialized: 2 states, 3 outputs, 2 modes, 6 law products, 6 tones, sines, no traces
     assert [sum(len(t) for t in tag) for tag in tags] == [0, 0, 21, 21]
