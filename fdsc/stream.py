@@ -865,8 +865,7 @@ def _stack(preps):
     st = dict(N=np.array([q["N"] for q in preps], dtype=np.int64),
               dt=np.array([q["dt"] for q in preps]),
               nm=np.array([q["nm"] for q in preps], dtype=np.int64),
-              Phi=np.zeros((C, nm, n, n)), A=np.zeros((C, nm, n, n)), B=np.zeros((C, n)),
-              C=np.zeros((C, nm, p, n)), D=np.zeros((C, p)), W=np.zeros((C, nm, f * n, f * n)),
+              Phi=np.zeros((C, nm, n, n)), C=np.zeros((C, nm, p, n)), D=np.zeros((C, p)),
               Mt=np.zeros((C, nm, nm, (n + f - 1) * (n + f) // 2)),
               law=np.array([q["law"] for q in preps], dtype=np.int64),
               sigma0=np.array([q["sigma0"] for q in preps], dtype=np.int64),
@@ -887,24 +886,14 @@ def _stack(preps):
         # padded states: Φ = I keeps them at zero; padded modes are never chosen (nm per case)
         for i in range(qm):
             st["Phi"][c, i, qn:, qn:] = np.eye(n - qn)
-        st["A"][c, :qm, :qn, :qn] = q["A"]
-        st["B"][c, :qn] = q["B"]
         st["C"][c, :qm, :qp, :qn] = q["C"]
         st["D"][c, :qp] = q["D"]
-        W = q["W"]
-        g = W.shape[1] // qn
-        for i in range(W.shape[0]):
-            # the law's form is vᵀ W v with v = [ẍ; ẋ; x] or [ẋ; x]: place each n×n block at the
-            # padded position (a first-order law in a second-order batch leaves the ẍ block zero)
-            for a in range(g):
-                for b in range(g):
-                    st["W"][c, i, (a + f - g) * n:(a + f - g) * n + qn,
-                            (b + f - g) * n:(b + f - g) * n + qn] = W[i, a * qn:(a + 1) * qn,
-                                                                     b * qn:(b + 1) * qn]
         # the forms on ξ from the case's own matrices, then placed in the padded ξ = [x; d; ḋ]
-        # (computed on padded matrices, the products would round differently with the padding,
-        # and a near-tie of the scores could switch otherwise than in the case's own run)
-        own = _law_forms(q["A"], q["B"], W, g).transpose(0, 2, 1)
+        # (a first-order law in a second-order batch leaves the ḋ entries zero; computed on
+        # padded matrices, the products would round differently with the padding, and a
+        # near-tie of the scores could switch otherwise than in the case's own run)
+        g = q["W"].shape[1] // qn
+        own = _law_forms(q["A"], q["B"], q["W"], g).transpose(0, 2, 1)
         st["Mt"][c, :qm, :qm][..., _packed_positions(qn, g, n, f)] = own
         st["rparams"][c] = q["rparams"]
         st["x0"][c, :qn] = q["x0"]
@@ -1114,7 +1103,7 @@ def _result(pr, c, st, sums, share_steps, dwell_counts, cum, tr_lo, tr_hi, tr_sh
         counts = np.clip(last + 1 - start, 1, te).astype(float)
         # bins after the point where the state overflowed were never written: not a value
         lo[start > last], hi[start > last], sh[start > last] = np.nan, np.nan, np.nan
-        nn = st["B"].shape[1]
+        nn = st["x0"].shape[1]
         cols_x, cols_z = slice(0, n), slice(nn, nn + p)
         dcol = nn + st["D"].shape[1]
         trace = Trace(start * dt, lo[:, cols_x], hi[:, cols_x], lo[:, cols_z], hi[:, cols_z],

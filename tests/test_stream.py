@@ -228,16 +228,17 @@ def test_a_near_tie_switches_the_same_in_a_padded_batch_as_alone():
     assert alone.switches > 50
 
 
-def _loop_both_ways(monkeypatch, cases, **opts):
-    """The batch by the general loop and by the loop specialized to its sizes, and the tags."""
+def _spy_tags(monkeypatch):
+    """The list that receives every ``shape`` tag the loop is called with."""
     tags = []
     real = stream._shape_tag
+    monkeypatch.setattr(stream, "_shape_tag", lambda *a: tags.append(real(*a)) or tags[-1])
+    return tags
 
-    def spy(st, kernel, specialize):
-        tags.append(real(st, kernel, specialize))
-        return tags[-1]
 
-    monkeypatch.setattr(stream, "_shape_tag", spy)
+def _loop_both_ways(monkeypatch, cases, **opts):
+    """The batch by the general loop and by the loop specialized to its sizes, and the tags."""
+    tags = _spy_tags(monkeypatch)
     general = simulate_batch(cases, closed_form=False, specialize=False, **opts)
     fixed = simulate_batch(cases, closed_form=False, specialize=True, **opts)
     return general, fixed, tags
@@ -619,9 +620,7 @@ def test_specialize_flag_is_checked():
 
 
 def test_by_default_only_long_runs_are_specialized(monkeypatch):
-    tags = []
-    real = stream._shape_tag
-    monkeypatch.setattr(stream, "_shape_tag", lambda *a: tags.append(real(*a)) or tags[-1])
+    tags = _spy_tags(monkeypatch)
     pm = paper_modes()
     kw = dict(law_bands=pm["bands"], law_Q=pm["Q"])
     short = simulate_stream(pm["modes"], mixed_disturbance(0.1), 10.0, 1e-3, **kw)
