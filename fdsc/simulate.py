@@ -27,7 +27,7 @@ from .energy import check_weight
 from .exceptions import DimensionError, MemoryLimitError, UnstableError, UnstableRunWarning
 from .frequency import check_no_pole_at
 from .plant import LTISystem, as_system
-from .rules import PRINTED, SwitchRule, apply_rule, rule_state
+from .rules import PRINTED, SwitchRule, apply_rule, decide, rule_state, window_scores
 from .signals import Piecewise, Sinusoids
 
 __all__ = ["SimResult", "particular", "simulate", "time_grid", "envelope", "estimate_memory",
@@ -207,11 +207,21 @@ def _particular_many(As, B, d, t, derivative=False):
         for m, A in enumerate(As):
             X = np.linalg.solve(1j * w * np.eye(n) - A, b * a)
             # Im(X e^{jθ}) = Im X cos θ + Re X sin θ
-            xps[m] += np.outer(c, X.imag) + np.outer(s, X.real)
+            _add_tone(xps[m], c, s, np.ascontiguousarray(X.imag), np.ascontiguousarray(X.real))
             if derivative:
                 Xd = 1j * w * X
-                xdps[m] += np.outer(c, Xd.imag) + np.outer(s, Xd.real)
+                _add_tone(xdps[m], c, s, np.ascontiguousarray(Xd.imag),
+                          np.ascontiguousarray(Xd.real))
     return xps, xdps
+
+
+@njit(cache=True)
+def _add_tone(xp, c, s, Xi, Xr):
+    """xp += outer(c, Xi) + outer(s, Xr) in one pass (the same operations in the same order as
+    NumPy's, so the same numbers)."""
+    for k in range(xp.shape[0]):
+        for r in range(xp.shape[1]):
+            xp[k, r] += c[k] * Xi[r] + s[k] * Xr[r]
 
 
 def _segments(d, t):
@@ -318,63 +328,81 @@ def _derivative_samples(d, t):
 
 
 @njit(cache=True)
-def _derivatives(A, B, m, x, dk, ddk, v, n, q):
-    """v = [ẍ; ẋ; x] (q = 3n) or [ẋ; x] (q = 2n) of mode m at state x, d = dk, ḋ = ddk."""
-    o = q - 2 * n
-    for r in range(n):
-        acc = B[r] * dk
-        for c in range(n):
-            acc += A[m, r, c] * x[c]
-        v[o + r] = acc
-        v[o + n + r] = x[r]
-    if o > 0:
-        for r in range(n):
-            acc = B[r] * ddk
-            for c in range(n):
-                acc += A[m, r, c] * v[n + c]
-            v[r] = acc
-
-
-@njit(cache=True)
-def _scores(A, B, W, x, dk, ddk, prev, candidate, v, sc):
-    """The law's score of every mode at one sample (measured or candidate derivatives)."""
-    n_modes, n, q = A.shape[0], A.shape[1], W.shape[1]
-    for i in range(n_modes):
-        if candidate or i == 0:
-            # the measured derivatives (default law) are the same for every candidate
-            _derivatives(A, B, i if candidate else prev, x, dk, ddk, v, n, q)
-        score = 0.0
-        for r in range(q):
-            row = 0.0
-            for c in range(q):
-                row += W[i, r, c] * v[c]
-            score += v[r] * row
-        sc[i] = score
-
-
-@njit(cache=True)
 def _kernel_numba(Phi, left, right, A, B, d, dd, W, x0, sigma0, candidate, rparams, ring, ring_sum,
                   istate):
+    """The compiled loop of :func:`simulate` (the same method as :func:`_kernel_numpy`).
+
+    The law's scores and the rule are written out in the loop rather than called: a compiled
+    call that passes arrays reference-counts each of them, which cost more than the arithmetic
+    (about 0.5 µs per sample). The law: v = [ẍ; ẋ; x] (W of size 3n) or [ẋ; x] (2n), with the
+    measured derivatives of the active mode (or each candidate's own), score_i = vᵀ W_i v; the
+    rule: :func:`fdsc.rules.window_scores` (windows only), the argmax (ties to the lowest
+    index) and :func:`fdsc.rules.decide`, as :func:`fdsc.rules.apply_rule` composes them."""
     n_modes, n = A.shape[0], A.shape[1]
+    q = W.shape[1]
+    o = q - 2 * n
     N = d.shape[0]
     x = np.empty((N, n))
     sigma = np.empty(N, np.int64)
-    x[0] = x0
+    for r in range(n):
+        x[0, r] = x0[r]
     prev = sigma0
-    v = np.empty(W.shape[1])
+    v = np.empty(q)
     sc = np.empty(n_modes)
     eff = np.empty(n_modes)
+    margin = rparams[0]
+    relative = rparams[1] > 0
+    dwell_steps = int(rparams[2])
+    L = int(rparams[3])
     for k in range(N):
-        xk = x[k]
         if n_modes > 1:
-            _scores(A, B, W, xk, d[k], dd[k], prev, candidate, v, sc)
-            prev = apply_rule(sc, sc.shape[0], prev, k, rparams, ring, ring_sum, istate, eff)
+            dk = d[k]
+            ddk = dd[k]
+            for i in range(n_modes):
+                if candidate or i == 0:
+                    # the measured derivatives (default law) are the same for every candidate
+                    mm = i if candidate else prev
+                    for r in range(n):
+                        acc = B[r] * dk
+                        for c in range(n):
+                            acc += A[mm, r, c] * x[k, c]
+                        v[o + r] = acc
+                        v[o + n + r] = x[k, r]
+                    if o > 0:
+                        for r in range(n):
+                            acc = B[r] * ddk
+                            for c in range(n):
+                                acc += A[mm, r, c] * v[n + c]
+                            v[r] = acc
+                score = 0.0
+                for r in range(q):
+                    row = 0.0
+                    for c in range(q):
+                        row += W[i, r, c] * v[c]
+                    score += v[r] * row
+                sc[i] = score
+            if L > 1:
+                window_scores(sc, n_modes, L, ring, ring_sum, istate, eff)
+            else:
+                for i in range(n_modes):
+                    eff[i] = sc[i]
+            best = prev
+            top = -np.inf
+            for i in range(n_modes):
+                if eff[i] > top:
+                    top = eff[i]
+                    best = i
+            choice = decide(best, prev, eff[best], eff[prev], k, istate[2], margin, relative,
+                            dwell_steps)
+            if choice != prev:
+                istate[2] = k
+            prev = choice
         sigma[k] = prev
         if k + 1 < N:
             for r in range(n):
                 acc = right[prev, k, r]
                 for c in range(n):
-                    acc += Phi[prev, r, c] * (xk[c] - left[prev, k, c])
+                    acc += Phi[prev, r, c] * (x[k, c] - left[prev, k, c])
                 x[k + 1, r] = acc
     return x, sigma
 
