@@ -1007,11 +1007,13 @@ def _closed_result(pr):
 #: outputs, tones and modes up to this many have loops of a fixed trip count.
 UNROLL_MAX = 8
 #: Fewest steps in one call (one group of cases) for which the specialized loop is used by
-#: default: compiling it for new sizes costs about 4 s once (then numba's disk cache has it) and
-#: saves about 35 ns per step on the paper's loop, so shorter calls would not repay a first
-#: compilation (the record's calls of fewer steps add up to 3e7 steps, and would need 8 more
-#: compiled loops).
-UNROLL_MIN_STEPS = 10_000_000
+#: default. Compiling it for new sizes costs about 3–4 s of one core once (then numba's disk cache
+#: has it) and saves 30–40 ns per step on the paper's loop, so a call repays its first
+#: compilation from about 1e8 steps on; 5e7 lets the record's four largest calls (of the
+#: paper's two-mode loop under 6 and 3 tones) share two compiled loops, and leaves its other
+#: calls (3e8 steps in all, about 10 s) to the general loop rather than compile eight more
+#: (about 30 s on every fresh install, such as each CI run).
+UNROLL_MIN_STEPS = 50_000_000
 
 
 def _shape_tag(st, kernel, specialize=None):

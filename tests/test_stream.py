@@ -624,7 +624,10 @@ def test_by_default_only_long_runs_are_specialized(monkeypatch):
     pm = paper_modes()
     kw = dict(law_bands=pm["bands"], law_Q=pm["Q"])
     short = simulate_stream(pm["modes"], mixed_disturbance(0.1), 10.0, 1e-3, **kw)
-    steps = stream.UNROLL_MIN_STEPS
+    # the flip at the threshold, on a threshold lowered to keep the test short (the default's
+    # 5e7 steps would take seconds); the runs read the constant when called
+    steps = 200_000
+    monkeypatch.setattr(stream, "UNROLL_MIN_STEPS", steps)
     for n_steps in (steps - 1, steps):
         simulate_stream(pm["modes"], mixed_disturbance(0.1), n_steps * 1e-3, 1e-3, **kw)
     forced = simulate_stream(pm["modes"], mixed_disturbance(0.1), 10.0, 1e-3, specialize=True, **kw)
