@@ -9,7 +9,7 @@ import scipy.linalg
 from numpy.testing import assert_allclose
 from scipy.integrate import simpson
 
-from fdsc import Band, LTISystem, Piecewise, Sampled, Sinusoids, SwitchRule, stream
+from fdsc import Band, LTISystem, Piecewise, Sampled, Sinusoids, SwitchRule, _stream_run, _stream_setup
 from fdsc.exceptions import UnstableError, UnstableRunWarning
 from fdsc.paper.data import hf_disturbance, mixed_disturbance, paper_modes, piecewise_disturbance
 from fdsc.random_systems import random_hurwitz, random_spd
@@ -231,8 +231,8 @@ def test_a_near_tie_switches_the_same_in_a_padded_batch_as_alone():
 def _spy_tags(monkeypatch):
     """The list that receives every ``shape`` tag the loop is called with."""
     tags = []
-    real = stream._shape_tag
-    monkeypatch.setattr(stream, "_shape_tag", lambda *a: tags.append(real(*a)) or tags[-1])
+    real = _stream_run._shape_tag
+    monkeypatch.setattr(_stream_run, "_shape_tag", lambda *a: tags.append(real(*a)) or tags[-1])
     return tags
 
 
@@ -470,7 +470,7 @@ def test_law_forms_on_xi_equal_the_scores_on_the_derivatives(f):
     A = rng.standard_normal((nm, n, n))
     B = rng.standard_normal(n)
     W = np.array([w + w.T for w in rng.standard_normal((nm, f * n, f * n))])
-    Mt = stream._law_forms(A, B, W, f)
+    Mt = _stream_setup._law_forms(A, B, W, f)
     iu = np.triu_indices(n + f - 1)
     for _ in range(5):
         x, d, dd = rng.standard_normal(n), rng.standard_normal(), rng.standard_normal()
@@ -491,7 +491,7 @@ def test_tone_input_matrices_equal_the_particular_solution_step():
     part = Sinusoids([1.0, 0.3], [0.7, 50.0], [0.2, -1.0])
     dt = 1e-3
     prep = dict(segments=[part], nm=1, n=2, dt=dt, A=A[None], B=B)
-    _, _, _, _, H, _ = stream._tone_arrays(prep, 2)
+    _, _, _, _, H, _ = _stream_setup._tone_arrays(prep, 2)
     Phi = scipy.linalg.expm(A * dt)
     for j, (a, w) in enumerate(zip(part.amplitudes, part.frequencies, strict=True)):
         X = np.linalg.solve(1j * w * np.eye(2) - A, B * a)
@@ -554,10 +554,10 @@ def test_closed_form_lti_sums_equal_the_loop_on_random_loops():
     kept = 0
     for _ in range(80):
         case, every = _random_lti_case(rng)
-        pr = stream._prepare(case, "", every, None, None)
-        closed = stream._closed_result(pr)
-        loop = stream._run([pr], "numba", 1, closed_form=False)[0]
-        auto = stream._run([pr], "numba", 1)[0]
+        pr = _stream_setup._prepare(case, "", every, None, None)
+        closed = _stream_run._closed_result(pr)
+        loop = _stream_run._run([pr], "numba", 1, closed_form=False)[0]
+        auto = _stream_run._run([pr], "numba", 1)[0]
         if closed is None:                      # the run falls back to the loop, bit for bit
             assert auto.energy == loop.energy and np.array_equal(auto.x_final, loop.x_final)
             continue
@@ -577,15 +577,15 @@ def test_closed_form_refuses_what_would_lose_digits():
     # a constant input into a pole at −0.0165 rad/s for 1 s: steady state (60× the state) and
     # transient nearly annul each other; summed in closed form this lost 8 digits
     loop = paper_modes()["modes"][1]
-    pr = stream._prepare(Case(loop, Sinusoids([2.0], [0.0], [1.0]), 1.0, 1e-3), "", None, None, None)
-    assert stream._closed_result(pr) is None
+    pr = _stream_setup._prepare(Case(loop, Sinusoids([2.0], [0.0], [1.0]), 1.0, 1e-3), "", None, None, None)
+    assert _stream_run._closed_result(pr) is None
     # a step whose spectral radius is within 1e-6 of 1 (a pole at −1e-4 rad/s, Δt = 1 ms)
     slow = LTISystem([[-1e-4]], [[1.0]], [[1.0]], [[0.0]])
-    assert not stream._closed_form_applies(stream._prepare(Case(slow, Sinusoids([1.0], [1.0]), 100.0, 1e-3),
-                                                           "", None, None, None))
+    prep = _stream_setup._prepare(Case(slow, Sinusoids([1.0], [1.0]), 100.0, 1e-3), "", None, None, None)
+    assert not _stream_run._closed_form_applies(prep)
     # a traced run or a sampled input goes through the loop too
-    pr = stream._prepare(Case(SCALAR, Sinusoids([1.0], [1.0]), 1.0, 1e-3), "", None, 0.1, None)
-    assert not stream._closed_form_applies(pr)
+    pr = _stream_setup._prepare(Case(SCALAR, Sinusoids([1.0], [1.0]), 1.0, 1e-3), "", None, 0.1, None)
+    assert not _stream_run._closed_form_applies(pr)
 
 
 def test_closed_form_is_scipy_simpson_for_odd_and_even_point_counts():
@@ -627,7 +627,7 @@ def test_by_default_only_long_runs_are_specialized(monkeypatch):
     # the flip at the threshold, on a threshold lowered to keep the test short (the default's
     # 5e7 steps would take seconds); the runs read the constant when called
     steps = 200_000
-    monkeypatch.setattr(stream, "UNROLL_MIN_STEPS", steps)
+    monkeypatch.setattr(_stream_run, "UNROLL_MIN_STEPS", steps)
     for n_steps in (steps - 1, steps):
         simulate_stream(pm["modes"], mixed_disturbance(0.1), n_steps * 1e-3, 1e-3, **kw)
     forced = simulate_stream(pm["modes"], mixed_disturbance(0.1), 10.0, 1e-3, specialize=True, **kw)

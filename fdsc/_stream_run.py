@@ -1,0 +1,228 @@
+"""How :mod:`fdsc.stream` runs a group of prepared cases: in closed form where that applies
+(:mod:`fdsc._closed_form`), else by the compiled loop (:mod:`fdsc._stream_loop`), specialized to
+the group's sizes when it is long enough, on a pool of threads. Internal.
+"""
+
+import functools
+import warnings
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+
+from . import _closed_form
+from ._stream_loop import _case_loop, _case_numba
+from ._stream_setup import _KIND_SINES, _stack, _tone_input
+from ._stream_types import StreamResult, Trace
+from .exceptions import UnstableRunWarning
+
+__all__ = []
+
+_INPUTS = ("N", "dt", "nm", "Phi", "C", "D", "Mt", "law", "sigma0", "x0", "kind",
+           "seg_start", "seg_nt", "omega", "amp", "phase", "Gr", "Gi", "Rre", "Rim")
+
+
+def _run(preps, kernel, threads, closed_form=True, specialize=None):
+    """Results of every prepared case: by the closed form where it applies (if allowed), by the
+    loop otherwise."""
+    closed = [_closed_result(q) if closed_form and _closed_form_applies(q) else None for q in preps]
+    looped = [i for i, c in enumerate(closed) if c is None]
+    # the loop runs in groups of cases with the same number of modes, kind of input and traces
+    # or none, so that each group's compiled loop can be specialized to it (_shape_tag)
+    groups = {}
+    for i in looped:
+        q = preps[i]
+        groups.setdefault((q["nm"], q["kind"] == _KIND_SINES, q["trace_every"] == 0), []).append(i)
+    planned = [(members, _loop_plan([preps[i] for i in members], kernel, specialize))
+               for members in groups.values()]
+    # every group's cases on one pool of threads, the longest first, so that the threads finish
+    # together; each case writes only its own rows of its group's outputs
+    runs = sorted(((steps, run) for _, plan in planned for steps, run in plan[0]),
+                  key=lambda job: -job[0])
+    if kernel == "numba" and len(runs) > 1 and threads > 1:
+        with ThreadPoolExecutor(min(threads, len(runs))) as pool:
+            for _ in pool.map(lambda job: job[1](), runs):
+                pass
+    else:
+        for _, run in runs:
+            run()
+    for members, (_, results) in planned:
+        for i, res in zip(members, results(), strict=True):
+            closed[i] = res
+    return closed
+
+
+def _closed_form_applies(pr):
+    return (pr["nm"] == 1 and pr["kind"] == _KIND_SINES and pr["trace_every"] == 0
+            and _closed_form.applies(pr["Phi"][0]))
+
+
+def _closed_result(pr):
+    """The result of an LTI run under pieces of tones from the closed form of its Simpson sums
+    (:mod:`fdsc._closed_form`): the same numbers as the loop's, rounded differently; None if
+    the closed form's terms cancel too much to keep its accuracy."""
+    N, dt, ce = pr["N"], pr["dt"], pr["cum_every"]
+    A, B = pr["A"][0], pr["B"]
+    parts = pr["segments"]
+    H = [None if part is None else _tone_input(A, B, part, dt) for part in parts]
+    grid = np.arange(0, N, ce, dtype=np.int64) if ce else np.zeros(0, dtype=np.int64)
+    if N == 2:
+        ends, points = [], [0, 1]
+    elif N % 2 == 1:
+        ends, points = [N], [0, N - 1]
+    else:
+        ends, points = [N - 2], [0, N - 3, N - 2, N - 1]
+    ends_all = np.concatenate([np.array(ends, dtype=np.int64), grid])
+    points_all = np.concatenate([np.array(points, dtype=np.int64), grid])
+    G, f, x_last, mag = _closed_form.simpson_sums(pr["Phi"][0], pr["C"][0], pr["D"], pr["x0"],
+                                                  pr["seg_start"], parts, H, dt, ends_all, points_all)
+    if not np.all(mag <= _closed_form.MAX_CANCELLATION * np.abs(G[0, 0])):
+        return None     # its terms cancel: digits would be lost, run the loop
+    # Simpson's weighted sum Σ_{k<K} w_k f_k (w = 1, 4, 2, 4, …) = 3 G₊ − G₋ − f₀
+    W = 3.0 * G[:, 0, :] - G[:, 1, :] - f[:, :1]
+    if N == 2:
+        total = dt * (f[:, 0] + f[:, 1]) / 2.0
+    elif N % 2 == 1:
+        total = dt / 3.0 * (W[:, 0] - f[:, 1])
+    else:
+        total = dt / 3.0 * (W[:, 0] + f[:, 2]) + dt * (5.0 * f[:, 3] + 8.0 * f[:, 2] - f[:, 1]) / 12.0
+    t_cum = grid * dt
+    cum = np.zeros((2, grid.size))
+    if grid.size:
+        cum[:, 1:] = dt / 3.0 * (W[:, len(ends) + 1:] + f[:, len(points) + 1:])
+    edges = pr["dwell_edges"].astype(float) * dt
+    return StreamResult(
+        horizon=pr["horizon"], dt=dt, energy=float(total[0]), input_energy=float(total[1]),
+        switches=0, time_share=np.ones(1), dwell_edges=edges,
+        dwell_counts=np.zeros(edges.size - 1, dtype=np.int64),
+        x_final=x_last, sigma_final=0, t_cum=t_cum, energy_cum=cum[0], input_energy_cum=cum[1],
+        trace=None, diverged_at=None)
+
+
+#: Largest size for which the compiled loop is specialized (see :func:`_shape_tag`): states,
+#: outputs, tones and modes up to this many have loops of a fixed trip count.
+UNROLL_MAX = 8
+#: Fewest steps in one call (one group of cases) for which the specialized loop is used by
+#: default. Compiling it for new sizes costs about 3–4 s of one core once (then numba's disk cache
+#: has it) and saves 30–40 ns per step on the paper's loop, so a call repays its first
+#: compilation from about 1e8 steps on; 5e7 lets the record's four largest calls (of the
+#: paper's two-mode loop under 6 and 3 tones) share two compiled loops, and leaves its other
+#: calls (3e8 steps in all, about 10 s) to the general loop rather than compile eight more
+#: (about 30 s on every fresh install, such as each CI run).
+UNROLL_MIN_STEPS = 50_000_000
+
+
+def _shape_tag(st, kernel, specialize=None):
+    """The ``shape`` argument of the compiled loop for the stacked cases ``st``.
+
+    The general loop (``((),) * 7``) reads every size from its arrays, so its small inner loops
+    (over the n states, p outputs, T tones, modes) have trip counts unknown to the compiler.
+    For a group of cases run by the compiled kernel (``specialize`` True, or None and at least
+    :data:`UNROLL_MIN_STEPS` steps in the group), each size up to :data:`UNROLL_MAX` that all
+    cases share (after padding: n, p, T and the law's vector are padded to the largest case,
+    the number of modes only if every case has it) becomes the length of a tuple: a constant
+    of the compiled code, one compiled loop per combination. The arithmetic is the same, in the
+    same order, so the results are the general loop's bit for bit (the tests check this):
+    padded tones add exact zeros.
+    """
+    general = ((),) * 7
+    if specialize is None:
+        specialize = int((st["N"] - 1).sum()) >= UNROLL_MIN_STEPS   # N points: N − 1 steps
+    if kernel != "numba" or not specialize:
+        return general
+
+    def fixed(size):
+        return (0,) * int(size) if 0 < size <= UNROLL_MAX else ()
+
+    nm = st["nm"]
+    sines = st["kind"] == _KIND_SINES
+    n_law = st["Mt"].shape[3]
+    return (fixed(st["x0"].shape[1]), fixed(st["D"].shape[1]),
+            fixed(nm[0]) if np.all(nm == nm[0]) else (),
+            (0,) * n_law if n_law <= (UNROLL_MAX + 1) * (UNROLL_MAX + 2) // 2 else (),
+            fixed(st["omega"].shape[2]) if np.any(sines) else (),
+            (0,) if np.all(sines) else (), (0,) if np.all(st["trace_every"] == 0) else ())
+
+
+def _loop_plan(preps, kernel, specialize=None):
+    """The loop's runs of a group of cases: ``([(points, run), ...], results)``, each ``run()``
+    stepping one case into the group's output arrays and ``results()`` reading them once every
+    run is done."""
+    st, dims = _stack(preps)
+    shape = _shape_tag(st, kernel, specialize)
+    Cn, n, p, nm, nb = len(preps), dims["n"], dims["p"], dims["nm"], dims["nb"]
+    q = n + p + 1
+    sums = np.zeros((Cn, 3))
+    share_steps = np.zeros((Cn, nm), dtype=np.int64)
+    dwell_counts = np.zeros((Cn, nb - 1), dtype=np.int64)
+    cum = np.zeros((int(st["cum_off"][-1]), 2))
+    n_tr = int(st["tr_off"][-1])
+    tr_lo, tr_hi, tr_share = np.zeros((n_tr, q)), np.zeros((n_tr, q)), np.zeros((n_tr, nm))
+    x_out = np.zeros((Cn, n))
+    info = np.zeros((Cn, 2), dtype=np.int64)
+    args = [st[k] for k in _INPUTS]
+    ring = np.zeros((int(st["ring_off"][-1]), nm))
+    ring_sum = np.zeros((Cn, nm))
+    istate = np.zeros((Cn, 3), dtype=np.int64)
+    loop = _case_numba if kernel == "numba" else _case_loop
+
+    def run_case(c):
+        u = st["u_all"][st["u_off"][c]:st["u_off"][c + 1]]
+        cs = slice(st["cum_off"][c], st["cum_off"][c + 1])
+        ts = slice(st["tr_off"][c], st["tr_off"][c + 1])
+        with np.errstate(over="ignore", invalid="ignore"):
+            loop(*[a[c] for a in args], u, st["G0"][c], st["G1"][c], st["cum_every"][c],
+                 st["trace_every"][c], st["dwell_edges"][c], st["rparams"][c],
+                 ring[st["ring_off"][c]:st["ring_off"][c + 1]], ring_sum[c], istate[c],
+                 sums[c], share_steps[c],
+                 dwell_counts[c], cum[cs], tr_lo[ts], tr_hi[ts], tr_share[ts], x_out[c], info[c],
+                 shape)
+
+    def results():
+        return [_result(pr, c, st, sums, share_steps, dwell_counts, cum, tr_lo, tr_hi, tr_share,
+                        x_out, info) for c, pr in enumerate(preps)]
+
+    return [(int(st["N"][c]), functools.partial(run_case, c)) for c in range(Cn)], results
+
+
+def _result(pr, c, st, sums, share_steps, dwell_counts, cum, tr_lo, tr_hi, tr_share, x_out, info):
+    N, dt, n, p, nm = pr["N"], pr["dt"], pr["n"], pr["p"], pr["nm"]
+    diverged = int(info[c, 0])
+    ce, te = pr["cum_every"], pr["trace_every"]
+    cs = slice(st["cum_off"][c], st["cum_off"][c + 1])
+    t_cum = np.arange(cs.stop - cs.start) * ce * dt
+    e_cum, d_cum = cum[cs, 0].copy(), cum[cs, 1].copy()
+    trace = None
+    if te:
+        ts = slice(st["tr_off"][c], st["tr_off"][c + 1])
+        lo, hi, sh = tr_lo[ts].copy(), tr_hi[ts].copy(), tr_share[ts, :nm].copy()
+        start = np.arange(lo.shape[0]) * te
+        last = N - 1 if diverged < 0 else diverged      # the last point written
+        counts = np.clip(last + 1 - start, 1, te).astype(float)
+        # bins after the point where the state overflowed were never written: not a value
+        lo[start > last], hi[start > last], sh[start > last] = np.nan, np.nan, np.nan
+        nn = st["x0"].shape[1]
+        cols_x, cols_z = slice(0, n), slice(nn, nn + p)
+        dcol = nn + st["D"].shape[1]
+        trace = Trace(start * dt, lo[:, cols_x], hi[:, cols_x], lo[:, cols_z], hi[:, cols_z],
+                      lo[:, dcol], hi[:, dcol], sh / counts[:, None])
+    if diverged >= 0:
+        # rows at and after the point where the state overflowed were never written
+        keep = np.arange(t_cum.size) * ce < diverged
+        t_cum, e_cum, d_cum = t_cum[keep], e_cum[keep], d_cum[keep]
+    edges = st["dwell_edges"][c, :pr["dwell_edges"].size].astype(float) * dt
+    return StreamResult(
+        horizon=pr["horizon"], dt=dt, energy=float(sums[c, 0]), input_energy=float(sums[c, 1]),
+        switches=int(sums[c, 2]), time_share=share_steps[c, :nm] / (N - 1),
+        dwell_edges=edges, dwell_counts=dwell_counts[c, :edges.size - 1].copy(),
+        x_final=x_out[c, :n].copy(), sigma_final=int(info[c, 1]), t_cum=t_cum, energy_cum=e_cum,
+        input_energy_cum=d_cum, trace=trace, diverged_at=None if diverged < 0 else diverged * dt)
+
+
+def _warn_unstable_modes(pr, res, where, stacklevel):
+    for i, m in enumerate(pr["modes"]):
+        ev = np.linalg.eigvals(m.A)
+        if ev.real.max() >= 0 and res.time_share[i] > 0:
+            worst = ev[np.argmax(ev.real)]
+            warnings.warn(f"{where}mode {i} is not Hurwitz (eigenvalue {worst:.6g}) and is active "
+                          "in this run; its energies grow with the horizon", UnstableRunWarning,
+                          stacklevel=stacklevel)
