@@ -53,6 +53,30 @@ def test_numba_kernel_equals_numpy_reference():
         assert_allclose(a.x, b.x, rtol=1e-12, atol=1e-15)
 
 
+
+@pytest.mark.parametrize("law", ["previous", "candidate"])
+def test_numba_kernel_equals_numpy_reference_on_second_order_weights_and_rules(law):
+    # the compiled kernel writes the scores and the rule out in its loop: three modes, weights
+    # on [ẍ; ẋ; x] (the ẍ path), a window with hysteresis and a dwell time, two pieces of tones
+    from fdsc import Piecewise, SwitchRule
+    from fdsc.random_systems import random_hurwitz
+
+    rng = np.random.default_rng(11)
+    n, nm = 3, 3
+    B, D = rng.standard_normal((n, 1)), rng.standard_normal((2, 1))
+    modes = [LTISystem(random_hurwitz(rng, n), B, rng.standard_normal((2, n)), D) for _ in range(nm)]
+    W = [M + M.T for M in rng.standard_normal((nm, 3 * n, 3 * n))]
+    d = Piecewise([0.0, 2.0, 4.0], [Sinusoids([1.0, 0.5], [3.0, 40.0]), Sinusoids([0.8], [9.0], [0.3])])
+    rule = SwitchRule(margin=0.02, dwell=0.005, window=0.01)
+    t = time_grid(4.0, 1e-3)
+    kw = dict(law_weights=W, law=law, rule=rule, x0=rng.standard_normal(n), sigma0=2)
+    a = simulate(modes, d, t, kernel="numba", **kw)
+    b = simulate(modes, d, t, kernel="numpy", **kw)
+    assert a.switch_times.size > 5 and set(np.unique(a.sigma)) == {0, 1, 2}
+    assert np.array_equal(a.sigma, b.sigma)
+    assert_allclose(a.x, b.x, rtol=1e-12, atol=1e-13 * np.abs(b.x).max())
+
+
 def test_switching_law_picks_the_argmax():
     pm = paper_modes()
     t = time_grid(2.0, 1e-3)
