@@ -7,6 +7,7 @@ import functools
 import warnings
 from concurrent.futures import ThreadPoolExecutor
 
+import numba
 import numpy as np
 
 from . import _closed_form
@@ -123,11 +124,13 @@ def _shape_tag(st, kernel, specialize=None):
     of the compiled code, one compiled loop per combination. The arithmetic is the same, in the
     same order, so the results are the general loop's bit for bit (the tests check this):
     padded tones add exact zeros.
+
+    A shorter group (``specialize`` None) is specialized too if this process already has the
+    loop for its sizes (compiled or read from the disk cache by a longer group): it costs
+    nothing more, and the results are the same either way.
     """
     general = ((),) * 7
-    if specialize is None:
-        specialize = int((st["N"] - 1).sum()) >= UNROLL_MIN_STEPS   # N points: N − 1 steps
-    if kernel != "numba" or not specialize:
+    if kernel != "numba" or specialize is False:
         return general
 
     def fixed(size):
@@ -136,11 +139,20 @@ def _shape_tag(st, kernel, specialize=None):
     nm = st["nm"]
     sines = st["kind"] == _KIND_SINES
     n_law = st["Mt"].shape[3]
-    return (fixed(st["x0"].shape[1]), fixed(st["D"].shape[1]),
-            fixed(nm[0]) if np.all(nm == nm[0]) else (),
-            (0,) * n_law if n_law <= (UNROLL_MAX + 1) * (UNROLL_MAX + 2) // 2 else (),
-            fixed(st["omega"].shape[2]) if np.any(sines) else (),
-            (0,) if np.all(sines) else (), (0,) if np.all(st["trace_every"] == 0) else ())
+    tag = (fixed(st["x0"].shape[1]), fixed(st["D"].shape[1]),
+           fixed(nm[0]) if np.all(nm == nm[0]) else (),
+           (0,) * n_law if n_law <= (UNROLL_MAX + 1) * (UNROLL_MAX + 2) // 2 else (),
+           fixed(st["omega"].shape[2]) if np.any(sines) else (),
+           (0,) if np.all(sines) else (), (0,) if np.all(st["trace_every"] == 0) else ())
+    if specialize is None and int((st["N"] - 1).sum()) < UNROLL_MIN_STEPS:   # N − 1 steps
+        return tag if _has_loop_for(tag) else general
+    return tag
+
+
+def _has_loop_for(tag):
+    """True if the compiled loop for the specialization ``tag`` is loaded in this process."""
+    ty = numba.typeof(tag)
+    return any(sig[-1] == ty for sig in _case_numba.signatures)
 
 
 def _loop_plan(preps, kernel, specialize=None):

@@ -621,6 +621,8 @@ def test_specialize_flag_is_checked():
 
 def test_by_default_only_long_runs_are_specialized(monkeypatch):
     tags = _spy_tags(monkeypatch)
+    # as in a fresh process: no specialized loop loaded yet (another test may have loaded one)
+    monkeypatch.setattr(_stream_run, "_has_loop_for", lambda tag: False)
     pm = paper_modes()
     kw = dict(law_bands=pm["bands"], law_Q=pm["Q"])
     short = simulate_stream(pm["modes"], mixed_disturbance(0.1), 10.0, 1e-3, **kw)
@@ -634,3 +636,18 @@ def test_by_default_only_long_runs_are_specialized(monkeypatch):
     # specialized: 2 states, 3 outputs, 2 modes, 6 law products, 6 tones, sines, no traces
     assert [sum(len(t) for t in tag) for tag in tags] == [0, 0, 21, 21]
     assert forced.energy == short.energy and forced.switches == short.switches
+
+
+def test_a_short_run_uses_a_specialized_loop_already_loaded(monkeypatch):
+    pm = paper_modes()
+    kw = dict(law_bands=pm["bands"], law_Q=pm["Q"])
+    d = mixed_disturbance(0.1)
+    forced = simulate_stream(pm["modes"], d, 2.0, 1e-3, specialize=True, **kw)   # loads it
+    tags = _spy_tags(monkeypatch)
+    short = simulate_stream(pm["modes"], d, 2.0, 1e-3, **kw)
+    general = simulate_stream(pm["modes"], d, 2.0, 1e-3, specialize=False, **kw)
+    # a size not loaded (3 tones instead of 6) stays general; 2 + 3 + 2 + 6 + 6 + 1 + 1 = 21
+    simulate_stream(pm["modes"], Sinusoids([1.0] * 3, [1.0, 2.0, 3.0]), 2.0, 1e-3, **kw)
+    sizes = [sum(len(t) for t in tag) for tag in tags]
+    assert sizes[:2] == [21, 0] and (sizes[2] == 0 or _stream_run._has_loop_for(tags[2]))
+    assert short.energy == forced.energy == general.energy and short.switches == general.switches
