@@ -344,8 +344,7 @@ def _kernel_numba(Phi, left, right, A, B, d, dd, W, x0, sigma0, candidate, rpara
     N = d.shape[0]
     x = np.empty((N, n))
     sigma = np.empty(N, np.int64)
-    for r in range(n):
-        x[0, r] = x0[r]
+    x[0] = x0
     prev = sigma0
     v = np.empty(q)
     sc = np.empty(n_modes)

@@ -134,7 +134,8 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
         Compile the loop for the run's sizes (states, outputs, modes, law vector, tones up to
         :data:`UNROLL_MAX`): about twice as fast per step, the same numbers bit for bit, but a
         first use for new sizes compiles for a few seconds (then numba's disk cache has it).
-        Default None: only for runs of at least :data:`UNROLL_MIN_STEPS` steps. Ignored by the
+        Default None: for runs of at least :data:`UNROLL_MIN_STEPS` steps, and for shorter
+        ones whose sizes this process has already compiled or loaded. Ignored by the
         ``"python"`` kernel.
 
     Returns
@@ -221,7 +222,7 @@ def simulate_batch(cases, *, cumulative_every: float | None = None, trace_every:
     specialize : bool, optional
         As in :func:`simulate_stream`, for each group of cases with the same number of modes,
         kind of input and traces or none (default None: groups of at least
-        :data:`UNROLL_MIN_STEPS` steps).
+        :data:`UNROLL_MIN_STEPS` steps, or whose sizes this process already has).
 
     Returns
     -------
