@@ -8,9 +8,12 @@ active on ``[t_k, t_{k+1})``,
 
 No quadrature of the input is involved; the only approximation of a switched run (the switched
 closed loop of paper eq. (32) under the law of paper eq. (31)) is that the switching law is
-evaluated on the sample grid. The hot loop runs in a
-compiled numba kernel; :func:`_kernel_numpy` is the same method in plain Python/NumPy, kept for
-the tests and the benchmark.
+evaluated on the sample grid. The whole run is one compiled numba loop
+(:mod:`fdsc._simulate_kernel`): it evaluates ``x_p``, d and ḋ from the tones' phasors, rotated
+from sample to sample by exact rotations (each phasor is the product of two correctly rounded
+numbers), and computes ẋ and z as it goes, so no per-step array is built beforehand.
+:func:`_kernel_numpy` is the same step in plain Python/NumPy with ``x_p`` from NumPy's cos and
+sin on the whole grid, kept for the tests and the benchmark; the two agree to rounding.
 """
 
 import warnings
@@ -21,13 +24,15 @@ from numba import njit
 from numpy.typing import ArrayLike
 from scipy.linalg import expm
 
+from ._simulate_kernel import kernel as _compiled_kernel
+from ._simulate_kernel import tone_tables
 from ._validation import as_choice, as_count, as_matrix, as_positive, as_vector, check_type
 from .bands import Band
 from .energy import check_weight
 from .exceptions import DimensionError, MemoryLimitError, UnstableError, UnstableRunWarning
 from .frequency import check_no_pole_at
 from .plant import LTISystem, as_system
-from .rules import PRINTED, SwitchRule, apply_rule, decide, rule_state, window_scores
+from .rules import PRINTED, SwitchRule, apply_rule, rule_state
 from .signals import Piecewise, Sinusoids
 
 __all__ = ["SimResult", "particular", "simulate", "time_grid", "envelope", "estimate_memory",
@@ -327,89 +332,12 @@ def _derivative_samples(d, t):
     return out
 
 
-@njit(cache=True)
-def _kernel_numba(Phi, left, right, A, B, d, dd, W, x0, sigma0, candidate, rparams, ring, ring_sum,
-                  istate):
-    """The compiled loop of :func:`simulate` (the same method as :func:`_kernel_numpy`).
-
-    The law's scores and the rule are written out in the loop rather than called: a compiled
-    call that passes arrays reference-counts each of them, which cost more than the arithmetic
-    (about 0.5 µs per sample). The law: v = [ẍ; ẋ; x] (W of size 3n) or [ẋ; x] (2n), with the
-    measured derivatives of the active mode (or each candidate's own), score_i = vᵀ W_i v; the
-    rule: :func:`fdsc.rules.window_scores` (windows only), the argmax (ties to the lowest
-    index) and :func:`fdsc.rules.decide`, as :func:`fdsc.rules.apply_rule` composes them."""
-    n_modes, n = A.shape[0], A.shape[1]
-    q = W.shape[1]
-    o = q - 2 * n
-    N = d.shape[0]
-    x = np.empty((N, n))
-    sigma = np.empty(N, np.int64)
-    x[0] = x0
-    prev = sigma0
-    v = np.empty(q)
-    sc = np.empty(n_modes)
-    eff = np.empty(n_modes)
-    margin = rparams[0]
-    relative = rparams[1] > 0
-    dwell_steps = int(rparams[2])
-    L = int(rparams[3])
-    for k in range(N):
-        if n_modes > 1:
-            dk = d[k]
-            ddk = dd[k]
-            for i in range(n_modes):
-                if candidate or i == 0:
-                    # the measured derivatives (default law) are the same for every candidate
-                    mm = i if candidate else prev
-                    for r in range(n):
-                        acc = B[r] * dk
-                        for c in range(n):
-                            acc += A[mm, r, c] * x[k, c]
-                        v[o + r] = acc
-                        v[o + n + r] = x[k, r]
-                    if o > 0:
-                        for r in range(n):
-                            acc = B[r] * ddk
-                            for c in range(n):
-                                acc += A[mm, r, c] * v[n + c]
-                            v[r] = acc
-                score = 0.0
-                for r in range(q):
-                    row = 0.0
-                    for c in range(q):
-                        row += W[i, r, c] * v[c]
-                    score += v[r] * row
-                sc[i] = score
-            if L > 1:
-                window_scores(sc, n_modes, L, ring, ring_sum, istate, eff)
-            else:
-                for i in range(n_modes):
-                    eff[i] = sc[i]
-            best = prev
-            top = -np.inf
-            for i in range(n_modes):
-                if eff[i] > top:
-                    top = eff[i]
-                    best = i
-            choice = decide(best, prev, eff[best], eff[prev], k, istate[2], margin, relative,
-                            dwell_steps)
-            if choice != prev:
-                istate[2] = k
-            prev = choice
-        sigma[k] = prev
-        if k + 1 < N:
-            for r in range(n):
-                acc = right[prev, k, r]
-                for c in range(n):
-                    acc += Phi[prev, r, c] * (x[k, c] - left[prev, k, c])
-                x[k + 1, r] = acc
-    return x, sigma
-
-
 def _kernel_numpy(Phi, left, right, A, B, d, dd, W, x0, sigma0, candidate, rparams, ring, ring_sum,
                   istate):
-    """Reference implementation of :func:`_kernel_numba` (NumPy arithmetic, plain Python loop;
-    the rule is the same function run by the interpreter)."""
+    """Reference implementation of the compiled kernel (:func:`fdsc._simulate_kernel.kernel`) in
+    NumPy arithmetic and a plain Python loop, with ``x_p`` at both ends of every step evaluated
+    beforehand from NumPy's cos and sin (``left``, ``right``); the rule is the same function run
+    by the interpreter."""
     n_modes, n = A.shape[0], A.shape[1]
     second = W.shape[1] == 3 * n
     N = d.shape[0]
@@ -435,11 +363,13 @@ def _kernel_numpy(Phi, left, right, A, B, d, dd, W, x0, sigma0, candidate, rpara
     return x, sigma
 
 
-def estimate_memory(n_steps: int, n_states: int, n_outputs: int, n_modes: int, n_tones: int = 1) -> int:
+def estimate_memory(n_steps: int, n_states: int, n_outputs: int, n_modes: int, n_tones: int = 1,
+                    *, kernel: str = "numba") -> int:
     """Bytes :func:`simulate` needs for a run of ``n_steps`` samples (peak working memory).
 
-    Counts the returned trajectories (x, ẋ, z, d, σ, t), the particular solutions at both ends
-    of every step for every mode, and the per-tone temporaries of their evaluation.
+    The compiled kernel needs the returned trajectories (x, ẋ, z, d, σ, t) only. The NumPy
+    reference also holds the particular solutions at both ends of every step for every mode and
+    the per-tone temporaries of their evaluation.
 
     Parameters
     ----------
@@ -447,21 +377,33 @@ def estimate_memory(n_steps: int, n_states: int, n_outputs: int, n_modes: int, n
         Grid points N, states n, regulated outputs p and modes I of the run.
     n_tones : int, optional
         Largest number of sinusoids in one segment of the disturbance.
+    kernel : {"numba", "numpy"}, optional
+        The kernel of the run (see :func:`simulate`).
 
     Returns
     -------
     int
         Bytes (8 per float).
 
+    Raises
+    ------
+    ValueError
+        If ``kernel`` is not one of :data:`KERNELS`.
+
     Examples
     --------
-    >>> estimate_memory(10**7, 2, 3, 2) / 2**30 < 4
+    >>> estimate_memory(10**7, 2, 3, 2) / 2**30 < 1
+    True
+    >>> estimate_memory(10**7, 2, 3, 2, kernel="numpy") / 2**30 < 4
     True
     """
-    per_step = (2 * n_states + n_outputs + 3          # x, ẋ, z, d, σ, t
-                + 2 * n_modes * n_states              # particular solutions, left and right
-                + n_modes * n_states + 2              # one segment's x_p per mode, cos and sin
-                + n_states + n_outputs)               # per-mode products when assembling ẋ, z
+    as_choice("kernel", kernel, KERNELS)
+    per_step = 2 * n_states + n_outputs + 3           # x, ẋ, z, d, σ, t
+    if kernel == "numba":
+        return int(8 * per_step * n_steps)
+    per_step += (2 * n_modes * n_states               # particular solutions, left and right
+                 + n_modes * n_states + 2             # one segment's x_p per mode, cos and sin
+                 + n_states + n_outputs)              # per-mode products when assembling ẋ, z
     return int(8 * per_step * n_steps) + int(8 * n_tones * n_steps)
 
 
@@ -648,22 +590,32 @@ def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
     t, dt = _check_grid(t)
     x0 = np.zeros(n) if x0 is None else np.array(as_vector("x0", x0, n))
     n_tones = max(p.frequencies.size for p in (d.parts if isinstance(d, Piecewise) else (d,)))
-    need = estimate_memory(t.size, n, modes[0].n_outputs, n_modes, n_tones)
+    need = estimate_memory(t.size, n, modes[0].n_outputs, n_modes, n_tones, kernel=kernel)
     if need > max_memory:
         raise MemoryLimitError(
             f"simulate: {t.size} steps of {n_modes} mode(s) need about {need / 2**30:.2f} GiB, more "
             f"than max_memory = {max_memory / 2**30:.2f} GiB; shorten the horizon, enlarge dt or "
             "raise max_memory")
-    dvals = d(t)
     Phi = np.array([expm(m.A * dt) for m in modes])
     A = np.array([m.A for m in modes])
-    left, right = _particular_steps(list(A), B, d, t)
-    ddvals = _derivative_samples(d, t) if W.shape[1] == 3 * n else np.zeros_like(dvals)
     rparams, ring, ring_sum, istate = rule_state(rule, dt, n_modes)
-    run = _kernel_numba if kernel == "numba" else _kernel_numpy
     with np.errstate(over="ignore", invalid="ignore"):
-        x, sigma = run(Phi, left, right, A, np.ascontiguousarray(B[:, 0]), dvals, ddvals, W, x0,
-                       int(sigma0), law == "candidate", rparams, ring, ring_sum, istate)
+        if kernel == "numba":
+            tab = tone_tables(_segments(d, t), t, A, B[:, 0], dt)
+            C = np.array([m.C for m in modes])
+            x, sigma, xdot, z, dvals = _compiled_kernel(
+                Phi, A, np.ascontiguousarray(B[:, 0]), C, np.ascontiguousarray(D[:, 0]), W, x0,
+                int(sigma0), law == "candidate", rparams, ring, ring_sum, istate, t,
+                tab["seg_start"], tab["seg_nt"], tab["omega"], tab["amp"], tab["phase"], tab["Xr"],
+                tab["Xi"], tab["Rre"], tab["Rim"], float(d(t[-1:])[0]),
+                float(_derivative_samples(d, t[-1:])[0]))
+        else:
+            dvals = d(t)
+            left, right = _particular_steps(list(A), B, d, t)
+            ddvals = _derivative_samples(d, t) if W.shape[1] == 3 * n else np.zeros_like(dvals)
+            x, sigma = _kernel_numpy(Phi, left, right, A, np.ascontiguousarray(B[:, 0]), dvals,
+                                     ddvals, W, x0, int(sigma0), law == "candidate", rparams, ring,
+                                     ring_sum, istate)
     finite = np.isfinite(x).all(axis=1)
     if not finite.all():
         k = int(np.argmin(finite))
@@ -676,10 +628,11 @@ def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
             warnings.warn(f"simulate: mode {i} is not Hurwitz (eigenvalue {worst:.6g}) and is "
                           "active in this run; its energies grow with the horizon",
                           UnstableRunWarning, stacklevel=2)
-    xdot = np.empty_like(x)
-    z = np.empty((t.size, modes[0].n_outputs))
-    for i, m in enumerate(modes):
-        sel = sigma == i
-        xdot[sel] = x[sel] @ m.A.T + np.outer(dvals[sel], B[:, 0])
-        z[sel] = x[sel] @ m.C.T + np.outer(dvals[sel], D[:, 0])
+    if kernel == "numpy":
+        xdot = np.empty_like(x)
+        z = np.empty((t.size, modes[0].n_outputs))
+        for i, m in enumerate(modes):
+            sel = sigma == i
+            xdot[sel] = x[sel] @ m.A.T + np.outer(dvals[sel], B[:, 0])
+            z[sel] = x[sel] @ m.C.T + np.outer(dvals[sel], D[:, 0])
     return SimResult(t, x, xdot, z, dvals, sigma)
