@@ -50,7 +50,8 @@ def tone_tables(pieces, t, As, B, dt):
     dict
         ``seg_start`` (S,), ``seg_nt`` (S,), ``omega``, ``amp``, ``phase`` (S, T), ``Xr``, ``Xi``
         (S, I, n, T: the real and imaginary part of each tone's X_j for each mode), ``Rre``,
-        ``Rim`` (S, K, T: the rotations ``e^{jω_j m Δt}``, m < K).
+        ``Rim`` (S, K, T: the rotations ``e^{jω_j m Δt}``, m < K, K the smaller of
+        :data:`PHASOR_BLOCK` and one more than the longest piece's steps).
 
     Raises
     ------
@@ -59,7 +60,9 @@ def tone_tables(pieces, t, As, B, dt):
     """
     S, (n_modes, n) = len(pieces), As.shape[:2]
     T = max([p.frequencies.size for _, _, p in pieces if p is not None] + [1])
-    K = PHASOR_BLOCK
+    # rows of the rotation tables: a piece of L steps uses rotations 0 … L (fewer rows than the
+    # block for short pieces, the same numbers: no piece is re-based before its block ends)
+    K = min(PHASOR_BLOCK, max(k1 - k0 for k0, k1, _ in pieces) + 1)
     out = dict(seg_start=np.array([k0 for k0, _, _ in pieces], dtype=np.int64),
                seg_nt=np.zeros(S, dtype=np.int64), omega=np.zeros((S, T)), amp=np.zeros((S, T)),
                phase=np.zeros((S, T)), Xr=np.zeros((S, n_modes, n, T)), Xi=np.zeros((S, n_modes, n, T)),

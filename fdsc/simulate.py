@@ -24,8 +24,8 @@ from numba import njit
 from numpy.typing import ArrayLike
 from scipy.linalg import expm
 
+from ._simulate_kernel import PHASOR_BLOCK, tone_tables
 from ._simulate_kernel import kernel as _compiled_kernel
-from ._simulate_kernel import tone_tables
 from ._validation import as_choice, as_count, as_matrix, as_positive, as_vector, check_type
 from .bands import Band
 from .energy import check_weight
@@ -229,21 +229,47 @@ def _add_tone(xp, c, s, Xi, Xr):
             xp[k, r] += c[k] * Xi[r] + s[k] * Xr[r]
 
 
-def _segments(d, t):
-    """Split the grid into segments with one Sinusoids each: list of (k0, k1, Sinusoids|None)."""
-    if isinstance(d, Sinusoids):
-        return [(0, t.size - 1, d)]
-    if not isinstance(d, Piecewise):
-        raise TypeError(f"d must be Sinusoids or Piecewise, found {type(d).__name__}")
+def _break_indices(d, t):
+    """The grid index of every break of a Piecewise (not clipped to the grid).
+
+    A break must lie on the grid up to rounding (within 1e-9 relative); the run cuts the pieces
+    there by index, so a t_k that lies an ulp below a break still belongs to the piece that starts
+    at the break, for the steps (:func:`_segments`) and the samples (:func:`_samples`) alike."""
     dt = t[1] - t[0]
-    out = []
     idx = []
     for b in d.breaks:
         k = round((b - t[0]) / dt)
         if abs(t[0] + k * dt - b) > 1e-9 * max(1.0, abs(b)):
             raise ValueError(f"the disturbance switches at t = {b:g}, which is not on the grid "
                              f"(dt = {dt:g}); choose dt dividing every break")
-        idx.append(min(max(k, 0), t.size - 1))
+        idx.append(k)
+    return idx
+
+
+def _samples(d, t, derivative=False, points=None):
+    """d (or ḋ, exact) at the grid points ``points`` (default all); a Piecewise by the index of
+    each point (see :func:`_break_indices`), zero where it is off."""
+    k = np.arange(t.size) if points is None else np.asarray(points, dtype=np.int64)
+    tk = t[k]
+    if isinstance(d, Sinusoids):
+        return d.derivative(tk) if derivative else d(tk)
+    idx = _break_indices(d, t)
+    out = np.zeros(tk.shape)
+    for j, part in enumerate(d.parts):
+        sel = (k >= idx[j]) & (k < idx[j + 1])
+        if np.any(sel):
+            out[sel] = part.derivative(tk[sel]) if derivative else part(tk[sel])
+    return out
+
+
+def _segments(d, t):
+    """Split the grid into segments with one Sinusoids each: list of (k0, k1, Sinusoids|None)."""
+    if isinstance(d, Sinusoids):
+        return [(0, t.size - 1, d)]
+    if not isinstance(d, Piecewise):
+        raise TypeError(f"d must be Sinusoids or Piecewise, found {type(d).__name__}")
+    idx = [min(max(k, 0), t.size - 1) for k in _break_indices(d, t)]
+    out = []
     if idx[0] > 0:
         out.append((0, idx[0], None))
     for j, part in enumerate(d.parts):
@@ -321,17 +347,6 @@ def _law_weights(n, n_modes, law_bands, law_Q, law_weights, where=""):
     return _law_matrices([b.psi.real for b in law_bands], Qs)
 
 
-def _derivative_samples(d, t):
-    """ḋ on the grid (exact for sums of sinusoids; zero where a Piecewise is off)."""
-    if isinstance(d, Sinusoids):
-        return d.derivative(t)
-    out = np.zeros_like(t)
-    for k, part in enumerate(d.parts):
-        sel = (t >= d.breaks[k]) & (t < d.breaks[k + 1])
-        out[sel] = part.derivative(t[sel])
-    return out
-
-
 def _kernel_numpy(Phi, left, right, A, B, d, dd, W, x0, sigma0, candidate, rparams, ring, ring_sum,
                   istate):
     """Reference implementation of the compiled kernel (:func:`fdsc._simulate_kernel.kernel`) in
@@ -364,12 +379,15 @@ def _kernel_numpy(Phi, left, right, A, B, d, dd, W, x0, sigma0, candidate, rpara
 
 
 def estimate_memory(n_steps: int, n_states: int, n_outputs: int, n_modes: int, n_tones: int = 1,
-                    *, kernel: str = "numba") -> int:
+                    *, n_pieces: int = 1, longest_piece: int | None = None,
+                    kernel: str = "numba") -> int:
     """Bytes :func:`simulate` needs for a run of ``n_steps`` samples (peak working memory).
 
-    The compiled kernel needs the returned trajectories (x, ẋ, z, d, σ, t) only. The NumPy
-    reference also holds the particular solutions at both ends of every step for every mode and
-    the per-tone temporaries of their evaluation.
+    The compiled kernel needs the returned trajectories (x, ẋ, z, d, σ, t) and, per piece of the
+    disturbance, its tone tables: rotations for ``min(PHASOR_BLOCK, longest_piece + 1)`` steps
+    (:data:`fdsc._simulate_kernel.PHASOR_BLOCK`) and each mode's particular-solution
+    coefficients. The NumPy reference also holds the particular solutions at both ends of every
+    step for every mode and the per-tone temporaries of their evaluation.
 
     Parameters
     ----------
@@ -377,6 +395,10 @@ def estimate_memory(n_steps: int, n_states: int, n_outputs: int, n_modes: int, n
         Grid points N, states n, regulated outputs p and modes I of the run.
     n_tones : int, optional
         Largest number of sinusoids in one segment of the disturbance.
+    n_pieces : int, optional
+        Pieces of the disturbance (those of a Piecewise and the stretches where it is off).
+    longest_piece : int, optional
+        Steps of the longest piece (default ``n_steps − 1``, the whole run).
     kernel : {"numba", "numpy"}, optional
         The kernel of the run (see :func:`simulate`).
 
@@ -400,7 +422,9 @@ def estimate_memory(n_steps: int, n_states: int, n_outputs: int, n_modes: int, n
     as_choice("kernel", kernel, KERNELS)
     per_step = 2 * n_states + n_outputs + 3           # x, ẋ, z, d, σ, t
     if kernel == "numba":
-        return int(8 * per_step * n_steps)
+        rows = min(PHASOR_BLOCK, (n_steps - 1 if longest_piece is None else longest_piece) + 1)
+        tables = n_pieces * (n_tones * (2 * rows + 2 * n_modes * n_states + 3) + 2)
+        return int(8 * per_step * n_steps) + int(8 * tables)
     per_step += (2 * n_modes * n_states               # particular solutions, left and right
                  + n_modes * n_states + 2             # one segment's x_p per mode, cos and sin
                  + n_states + n_outputs)              # per-mode products when assembling ẋ, z
@@ -551,7 +575,9 @@ def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
     SingularFrequencyError
         If a disturbance tone sits at an eigenvalue of a mode (resonance).
     MemoryLimitError
-        If the run would need more than ``max_memory`` bytes; nothing is allocated.
+        If the run would need more than ``max_memory`` bytes (:func:`estimate_memory`);
+        raised before any array of the run is allocated (the grid check's temporaries, about
+        3 N floats, come first).
     UnstableError
         If the state overflows (the loop diverges) during the run.
 
@@ -590,7 +616,9 @@ def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
     t, dt = _check_grid(t)
     x0 = np.zeros(n) if x0 is None else np.array(as_vector("x0", x0, n))
     n_tones = max(p.frequencies.size for p in (d.parts if isinstance(d, Piecewise) else (d,)))
-    need = estimate_memory(t.size, n, modes[0].n_outputs, n_modes, n_tones, kernel=kernel)
+    pieces = _segments(d, t)
+    need = estimate_memory(t.size, n, modes[0].n_outputs, n_modes, n_tones, n_pieces=len(pieces),
+                           longest_piece=max(k1 - k0 for k0, k1, _ in pieces), kernel=kernel)
     if need > max_memory:
         raise MemoryLimitError(
             f"simulate: {t.size} steps of {n_modes} mode(s) need about {need / 2**30:.2f} GiB, more "
@@ -601,18 +629,18 @@ def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
     rparams, ring, ring_sum, istate = rule_state(rule, dt, n_modes)
     with np.errstate(over="ignore", invalid="ignore"):
         if kernel == "numba":
-            tab = tone_tables(_segments(d, t), t, A, B[:, 0], dt)
+            tab = tone_tables(pieces, t, A, B[:, 0], dt)
             C = np.array([m.C for m in modes])
             x, sigma, xdot, z, dvals = _compiled_kernel(
                 Phi, A, np.ascontiguousarray(B[:, 0]), C, np.ascontiguousarray(D[:, 0]), W, x0,
                 int(sigma0), law == "candidate", rparams, ring, ring_sum, istate, t,
                 tab["seg_start"], tab["seg_nt"], tab["omega"], tab["amp"], tab["phase"], tab["Xr"],
-                tab["Xi"], tab["Rre"], tab["Rim"], float(d(t[-1:])[0]),
-                float(_derivative_samples(d, t[-1:])[0]))
+                tab["Xi"], tab["Rre"], tab["Rim"], float(_samples(d, t, points=[t.size - 1])[0]),
+                float(_samples(d, t, derivative=True, points=[t.size - 1])[0]))
         else:
-            dvals = d(t)
+            dvals = _samples(d, t)
             left, right = _particular_steps(list(A), B, d, t)
-            ddvals = _derivative_samples(d, t) if W.shape[1] == 3 * n else np.zeros_like(dvals)
+            ddvals = _samples(d, t, derivative=True) if W.shape[1] == 3 * n else np.zeros_like(dvals)
             x, sigma = _kernel_numpy(Phi, left, right, A, np.ascontiguousarray(B[:, 0]), dvals,
                                      ddvals, W, x0, int(sigma0), law == "candidate", rparams, ring,
                                      ring_sum, istate)

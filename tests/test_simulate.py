@@ -4,10 +4,12 @@ from numpy.testing import assert_allclose
 from scipy.linalg import expm
 
 from fdsc import LTISystem, Sinusoids
+from fdsc.exceptions import MemoryLimitError
 from fdsc.paper.data import (
     aircraft,
     lf_disturbance,
     mixed_disturbance,
+    paper_disturbance,
     paper_gains,
     paper_modes,
     piecewise_disturbance,
@@ -107,15 +109,48 @@ def test_compiled_kernel_rebases_phasors_on_an_offset_grid_with_pieces():
     assert_allclose(a.x[:k:997], free, rtol=0, atol=1e-13)
 
 
-def test_compiled_kernel_needs_only_the_trajectories():
-    # the compiled kernel builds no per-step particular solutions: less than a third of the reference's
-    # memory for the paper's sizes (n = 2, p = 3, two modes, six tones)
-    from fdsc.simulate import estimate_memory
+def test_compiled_kernel_needs_the_trajectories_and_its_tone_tables():
+    # the compiled kernel builds no per-step particular solutions: less than a third of the
+    # reference's memory for the paper's sizes (n = 2, p = 3, two modes, six tones) ...
+    from fdsc import Piecewise
+    from fdsc._simulate_kernel import tone_tables
+    from fdsc.simulate import _segments, estimate_memory
 
-    assert estimate_memory(10**6, 2, 3, 2, 6) == 8 * (2 * 2 + 3 + 3) * 10**6
     assert 3 * estimate_memory(10**6, 2, 3, 2, 6) < estimate_memory(10**6, 2, 3, 2, 6, kernel="numpy")
     with pytest.raises(ValueError, match="kernel"):
         estimate_memory(10, 2, 3, 2, kernel="jax")
+    # ... but tone tables per piece: the estimate counts exactly what tone_tables allocates, for
+    # many short pieces (tables of piece length) as for one long one (tables of a block)
+    pm = paper_modes()
+    A, B = np.array([m.A for m in pm["modes"]]), pm["modes"][0].B[:, 0]
+    hf = paper_disturbance("HF")
+    for t, d in ((time_grid(9.999, 1e-3), Piecewise(np.append(time_grid(9.999, 1e-3)[::10], 9.999),
+                                                    [hf] * 1000)),
+                 (time_grid(5.0, 1e-3), hf)):
+        pieces = _segments(d, t)
+        longest = max(k1 - k0 for k0, k1, _ in pieces)
+        tables = sum(a.nbytes for a in tone_tables(pieces, t, A, B, 1e-3).values())
+        full = estimate_memory(t.size, 2, 3, 2, 3, n_pieces=len(pieces), longest_piece=longest)
+        assert full - estimate_memory(t.size, 2, 3, 2, 3, n_pieces=0) == tables
+        # and simulate refuses the run from that estimate on
+        with pytest.raises(MemoryLimitError):
+            simulate(pm["modes"], d, t, law_bands=pm["bands"], law_Q=pm["Q"], max_memory=full - 1)
+        simulate(pm["modes"], d, t, law_bands=pm["bands"], law_Q=pm["Q"], max_memory=full)
+
+
+def test_both_kernels_cut_a_piecewise_at_the_grid_index_of_its_breaks():
+    # the paper's piecewise disturbance on a time_grid: its last break 0.63 lies an ulp above
+    # t[630] = 0.6299999999999999; the steps and the samples both cut the pieces by index, so
+    # d[630] is the value after the break (0: the disturbance is off) in both kernels
+    pm = paper_modes()
+    d = piecewise_disturbance(0.3, 0.1, 0.1)
+    t = time_grid(1.13, 1e-3)
+    assert t[630] < d.breaks[-1] == 0.63 and d(t[630]) != 0.0
+    kw = dict(law_bands=pm["bands"], law_Q=pm["Q"])
+    a, b = simulate(pm["modes"], d, t, **kw), simulate(pm["modes"], d, t, kernel="numpy", **kw)
+    assert a.d[630] == b.d[630] == 0.0 and a.d[629] != 0.0
+    assert np.array_equal(a.sigma, b.sigma)
+    assert_allclose(a.x, b.x, rtol=0, atol=1e-12 * np.abs(b.x).max())
 
 
 def test_switching_law_picks_the_argmax():
