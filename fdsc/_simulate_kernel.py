@@ -29,6 +29,13 @@ __all__ = []
 PHASOR_BLOCK = 512
 
 
+def rotations(w, dt, K):
+    """cos and sin of ``ω m Δt`` for m = 0 … K − 1: the rotations of a tone's phasor (the tables
+    of this kernel and of :mod:`fdsc.stream`)."""
+    theta = w * (np.arange(K) * dt)
+    return np.cos(theta), np.sin(theta)
+
+
 def tone_tables(pieces, t, As, B, dt):
     """The arrays of :func:`kernel` for a disturbance cut into pieces.
 
@@ -67,7 +74,6 @@ def tone_tables(pieces, t, As, B, dt):
                seg_nt=np.zeros(S, dtype=np.int64), omega=np.zeros((S, T)), amp=np.zeros((S, T)),
                phase=np.zeros((S, T)), Xr=np.zeros((S, n_modes, n, T)), Xi=np.zeros((S, n_modes, n, T)),
                Rre=np.zeros((S, K, T)), Rim=np.zeros((S, K, T)))
-    mdt = np.arange(K) * dt
     for s, (_, _, part) in enumerate(pieces):
         if part is None:
             continue
@@ -78,8 +84,7 @@ def tone_tables(pieces, t, As, B, dt):
         for i, A in enumerate(As):
             check_no_pole_at(A, part.frequencies, what=f"the forced response of mode {i} to the disturbance")
         for j, (a, w) in enumerate(zip(part.amplitudes, part.frequencies, strict=True)):
-            theta = w * mdt
-            out["Rre"][s, :, j], out["Rim"][s, :, j] = np.cos(theta), np.sin(theta)
+            out["Rre"][s, :, j], out["Rim"][s, :, j] = rotations(w, dt, K)
             for i, A in enumerate(As):
                 X = np.linalg.solve(1j * w * np.eye(n) - A, B * a)
                 out["Xr"][s, i, :, j], out["Xi"][s, i, :, j] = X.real, X.imag

@@ -8,6 +8,7 @@ import math
 import numpy as np
 from scipy.linalg import expm
 
+from ._simulate_kernel import PHASOR_BLOCK, rotations
 from ._stream_types import Case
 from ._validation import as_choice, as_count, as_positive, as_vector, check_type
 from .frequency import check_no_pole_at
@@ -17,8 +18,6 @@ from .simulate import LAWS, _as_modes, _law_weights, _shared_input
 
 __all__ = []
 
-#: Steps per block of phasor rotations (the first phasor of a block is computed by cos and sin).
-PHASOR_BLOCK = 512
 
 _KIND_SINES, _KIND_ZOH, _KIND_FOH = 0, 1, 2
 _LAW_CODE = {"previous": 0, "candidate": 1}
@@ -155,7 +154,6 @@ def _tone_arrays(prep, T):
     omega, amp, phase = np.zeros((S, T)), np.zeros((S, T)), np.zeros((S, T))
     H = np.zeros((S, nm, n, T), dtype=complex)
     R = np.zeros((S, T, K), dtype=complex)
-    jdt = np.arange(K) * dt
     for s, part in enumerate(prep["segments"]):
         if part is None:
             continue
@@ -163,8 +161,8 @@ def _tone_arrays(prep, T):
         nt[s] = k
         omega[s, :k], amp[s, :k], phase[s, :k] = part.frequencies, part.amplitudes, part.phases
         for j, w in enumerate(part.frequencies):
-            theta = w * jdt
-            R[s, j] = np.cos(theta) + 1j * np.sin(theta)
+            c, si = rotations(w, dt, K)
+            R[s, j] = c + 1j * si
         for i, Ai in enumerate(prep["A"]):
             H[s, i, :, :k] = _tone_input(Ai, prep["B"], part, dt)
     return nt, omega, amp, phase, H, R

@@ -280,13 +280,14 @@ def _segments(d, t):
     return out
 
 
-def _particular_steps(As, B, d, t):
+def _particular_steps(As, B, pieces, t):
     """x_p of every mode at the left and right end of every step [t_k, t_{k+1}), using the
-    sinusoids of the segment that owns the step. Returns two (I, N − 1, n) arrays."""
+    sinusoids of the piece that owns the step (``pieces``: :func:`_segments`). Returns two
+    (I, N − 1, n) arrays."""
     n, N = As[0].shape[0], t.size
     left = np.zeros((len(As), N - 1, n))
     right = np.zeros((len(As), N - 1, n))
-    for k0, k1, part in _segments(d, t):
+    for k0, k1, part in pieces:
         if part is None or k1 <= k0:
             continue
         xps, _ = _particular_many(As, B, part, t[k0:k1 + 1])
@@ -639,7 +640,7 @@ def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
                 float(_samples(d, t, derivative=True, points=[t.size - 1])[0]))
         else:
             dvals = _samples(d, t)
-            left, right = _particular_steps(list(A), B, d, t)
+            left, right = _particular_steps(list(A), B, pieces, t)
             ddvals = _samples(d, t, derivative=True) if W.shape[1] == 3 * n else np.zeros_like(dvals)
             x, sigma = _kernel_numpy(Phi, left, right, A, np.ascontiguousarray(B[:, 0]), dvals,
                                      ddvals, W, x0, int(sigma0), law == "candidate", rparams, ring,
