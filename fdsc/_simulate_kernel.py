@@ -1,4 +1,5 @@
-"""The compiled kernel of :func:`fdsc.simulate.simulate` and the tone tables it reads. Internal.
+"""The compiled kernel of :func:`fdsc.simulate.simulate`, the tone tables it reads and the pieces of
+the disturbance on the grid that both kernels step through. Internal.
 
 The kernel does the whole run in one loop, with no per-step arrays built beforehand: the step
 is that of :mod:`fdsc.simulate`, ``x_{k+1} = x_p(t_{k+1}) + Φ_i (x_k − x_p(t_k))``, with the
@@ -10,7 +11,7 @@ phasors are rotated from sample to sample as in :mod:`fdsc.stream`: every
 from a table, so each phasor is the product of two correctly rounded numbers (no error builds
 up along the run). d, ḋ, ẋ and z are computed in the same loop.
 
-The NumPy reference (:func:`fdsc.simulate._kernel_numpy`) evaluates ``x_p`` from NumPy's cos
+The NumPy reference (:mod:`fdsc._simulate_reference`) evaluates ``x_p`` from NumPy's cos
 and sin of ``ω_j t_k + φ_j`` on the whole grid instead; the two agree to rounding (the tests
 compare them).
 """
@@ -22,11 +23,63 @@ from numba import njit
 
 from .frequency import check_no_pole_at
 from .rules import decide, window_scores
+from .signals import Piecewise, Sinusoids
 
 __all__ = []
 
 #: Steps per block of phasor rotations (the first phasor of a block is computed by cos and sin).
 PHASOR_BLOCK = 512
+
+
+def _break_indices(d, t):
+    """The grid index of every break of a Piecewise (not clipped to the grid).
+
+    A break must lie on the grid up to rounding (within 1e-9 relative); the run cuts the pieces
+    there by index, so a t_k that lies an ulp below a break still belongs to the piece that starts
+    at the break, for the steps (:func:`_segments`) and the samples (:func:`_samples`) alike."""
+    dt = t[1] - t[0]
+    idx = []
+    for b in d.breaks:
+        k = round((b - t[0]) / dt)
+        if abs(t[0] + k * dt - b) > 1e-9 * max(1.0, abs(b)):
+            raise ValueError(f"the disturbance switches at t = {b:g}, which is not on the grid "
+                             f"(dt = {dt:g}); choose dt dividing every break")
+        idx.append(k)
+    return idx
+
+
+def _samples(d, t, derivative=False, points=None):
+    """d (or ḋ, exact) at the grid points ``points`` (default all); a Piecewise by the index of
+    each point (see :func:`_break_indices`), zero where it is off."""
+    k = np.arange(t.size) if points is None else np.asarray(points, dtype=np.int64)
+    tk = t[k]
+    if isinstance(d, Sinusoids):
+        return d.derivative(tk) if derivative else d(tk)
+    idx = _break_indices(d, t)
+    out = np.zeros(tk.shape)
+    for j, part in enumerate(d.parts):
+        sel = (k >= idx[j]) & (k < idx[j + 1])
+        if np.any(sel):
+            out[sel] = part.derivative(tk[sel]) if derivative else part(tk[sel])
+    return out
+
+
+def _segments(d, t):
+    """Split the grid into segments with one Sinusoids each: list of (k0, k1, Sinusoids|None)."""
+    if isinstance(d, Sinusoids):
+        return [(0, t.size - 1, d)]
+    if not isinstance(d, Piecewise):
+        raise TypeError(f"d must be Sinusoids or Piecewise, found {type(d).__name__}")
+    idx = [min(max(k, 0), t.size - 1) for k in _break_indices(d, t)]
+    out = []
+    if idx[0] > 0:
+        out.append((0, idx[0], None))
+    for j, part in enumerate(d.parts):
+        if idx[j + 1] > idx[j]:
+            out.append((idx[j], idx[j + 1], part))
+    if idx[-1] < t.size - 1:
+        out.append((idx[-1], t.size - 1, None))
+    return out
 
 
 def rotations(w, dt, K):
@@ -43,7 +96,7 @@ def tone_tables(pieces, t, As, B, dt):
     ----------
     pieces : list of (k0, k1, Sinusoids or None)
         Steps ``k0 … k1 − 1`` use the piece's tones (None: d = 0), as returned by
-        :func:`fdsc.simulate._segments`; they cover every step in order.
+        :func:`_segments`; they cover every step in order.
     t : (N,) ndarray
         The grid.
     As : (I, n, n) ndarray

@@ -8,13 +8,13 @@ import math
 import numpy as np
 from scipy.linalg import expm
 
+from ._modes import LAWS, _as_modes, _law_weights, _shared_input
 from ._simulate_kernel import PHASOR_BLOCK, rotations
 from ._stream_types import Case
 from ._validation import as_choice, as_count, as_positive, as_vector, check_type
 from .frequency import check_no_pole_at
 from .rules import SwitchRule, rule_state
 from .signals import Piecewise, Sampled, Sinusoids
-from .simulate import LAWS, _as_modes, _law_weights, _shared_input
 
 __all__ = []
 

@@ -73,6 +73,7 @@ from dataclasses import dataclass
 import cvxpy as cp
 import numpy as np
 
+from ._modes import LAWS
 from ._validation import as_choice, as_positive, check_type
 from .bands import PHI, Band
 from .energy import check_weight
@@ -80,7 +81,6 @@ from .exceptions import InfeasibleError, VerificationError
 from .kyp import supply_parts
 from .lmi import DEFAULT_MARGIN, _sym, solve_checked
 from .plant import LTISystem, as_system
-from .simulate import LAWS
 
 __all__ = ["SwitchingCertificate", "switching_forms", "certify_switching", "certify_switching_gain",
            "SWITCH_CONDITIONS", "P_CONDITION_LIMIT", "JUMP_TOL"]

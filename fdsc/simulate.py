@@ -12,27 +12,26 @@ evaluated on the sample grid. The whole run is one compiled numba loop
 (:mod:`fdsc._simulate_kernel`): it evaluates ``x_p``, d and ḋ from the tones' phasors, rotated
 from sample to sample by exact rotations (each phasor is the product of two correctly rounded
 numbers), and computes ẋ and z as it goes, so no per-step array is built beforehand.
-:func:`_kernel_numpy` is the same step in plain Python/NumPy with ``x_p`` from NumPy's cos and
-sin on the whole grid, kept for the tests and the benchmark; the two agree to rounding.
+:mod:`fdsc._simulate_reference` is the same step in plain Python/NumPy with ``x_p`` from NumPy's
+cos and sin on the whole grid, kept for the tests and the benchmark; the two agree to rounding.
+The modes and the law's weights are read as in :mod:`fdsc.stream` (:mod:`fdsc._modes`).
 """
 
 import warnings
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
 from numpy.typing import ArrayLike
 from scipy.linalg import expm
 
-from ._simulate_kernel import PHASOR_BLOCK, tone_tables
+from ._modes import LAWS, _as_modes, _law_weights, _shared_input
+from ._simulate_kernel import PHASOR_BLOCK, _samples, _segments, tone_tables
 from ._simulate_kernel import kernel as _compiled_kernel
+from ._simulate_reference import _kernel_numpy, _particular_many, _particular_steps
 from ._validation import as_choice, as_count, as_matrix, as_positive, as_vector, check_type
-from .bands import Band
-from .energy import check_weight
-from .exceptions import DimensionError, MemoryLimitError, UnstableError, UnstableRunWarning
-from .frequency import check_no_pole_at
-from .plant import LTISystem, as_system
-from .rules import PRINTED, SwitchRule, apply_rule, rule_state
+from .exceptions import MemoryLimitError, UnstableError, UnstableRunWarning
+from .plant import LTISystem
+from .rules import PRINTED, SwitchRule, rule_state
 from .signals import Piecewise, Sinusoids
 
 __all__ = ["SimResult", "particular", "simulate", "time_grid", "envelope", "estimate_memory",
@@ -44,10 +43,6 @@ KERNELS = ("numba", "numpy")
 DEFAULT_MAX_MEMORY = 4 * 2**30
 #: Grid uniformity: |t_k − (t_0 + k dt)| may not exceed this fraction of dt (plus rounding of t).
 GRID_RTOL = 1e-6
-
-#: How ẋ enters the switching law: "previous" (default: ẋ = A_σ(t⁻) x + B d, the measured
-#: derivative) or "candidate" (each candidate i is scored with its own ẋ = A_i x + B d).
-LAWS = ("previous", "candidate")
 
 
 @dataclass(frozen=True)
@@ -197,188 +192,6 @@ def particular(A: ArrayLike, B: ArrayLike, d: Sinusoids, t: ArrayLike) -> tuple[
     return xp, xdp
 
 
-def _particular_many(As, B, d, t, derivative=False):
-    """x_p (and ẋ_p) of several modes at once; cos and sin of each tone are computed once."""
-    t = np.asarray(t, dtype=float)
-    n = As[0].shape[0]
-    for m, A in enumerate(As):
-        check_no_pole_at(A, d.frequencies, what=f"the forced response of mode {m} to the disturbance")
-    xps = [np.zeros((t.size, n)) for _ in As]
-    xdps = [np.zeros((t.size, n)) for _ in As] if derivative else None
-    b = np.asarray(B, dtype=float).reshape(-1)
-    for a, w, ph in zip(d.amplitudes, d.frequencies, d.phases, strict=True):
-        theta = w * t + ph
-        c, s = np.cos(theta), np.sin(theta)
-        for m, A in enumerate(As):
-            X = np.linalg.solve(1j * w * np.eye(n) - A, b * a)
-            # Im(X e^{jθ}) = Im X cos θ + Re X sin θ
-            _add_tone(xps[m], c, s, np.ascontiguousarray(X.imag), np.ascontiguousarray(X.real))
-            if derivative:
-                Xd = 1j * w * X
-                _add_tone(xdps[m], c, s, np.ascontiguousarray(Xd.imag),
-                          np.ascontiguousarray(Xd.real))
-    return xps, xdps
-
-
-@njit(cache=True)
-def _add_tone(xp, c, s, Xi, Xr):
-    """xp += outer(c, Xi) + outer(s, Xr) in one pass (the same operations in the same order as
-    NumPy's, so the same numbers)."""
-    for k in range(xp.shape[0]):
-        for r in range(xp.shape[1]):
-            xp[k, r] += c[k] * Xi[r] + s[k] * Xr[r]
-
-
-def _break_indices(d, t):
-    """The grid index of every break of a Piecewise (not clipped to the grid).
-
-    A break must lie on the grid up to rounding (within 1e-9 relative); the run cuts the pieces
-    there by index, so a t_k that lies an ulp below a break still belongs to the piece that starts
-    at the break, for the steps (:func:`_segments`) and the samples (:func:`_samples`) alike."""
-    dt = t[1] - t[0]
-    idx = []
-    for b in d.breaks:
-        k = round((b - t[0]) / dt)
-        if abs(t[0] + k * dt - b) > 1e-9 * max(1.0, abs(b)):
-            raise ValueError(f"the disturbance switches at t = {b:g}, which is not on the grid "
-                             f"(dt = {dt:g}); choose dt dividing every break")
-        idx.append(k)
-    return idx
-
-
-def _samples(d, t, derivative=False, points=None):
-    """d (or ḋ, exact) at the grid points ``points`` (default all); a Piecewise by the index of
-    each point (see :func:`_break_indices`), zero where it is off."""
-    k = np.arange(t.size) if points is None else np.asarray(points, dtype=np.int64)
-    tk = t[k]
-    if isinstance(d, Sinusoids):
-        return d.derivative(tk) if derivative else d(tk)
-    idx = _break_indices(d, t)
-    out = np.zeros(tk.shape)
-    for j, part in enumerate(d.parts):
-        sel = (k >= idx[j]) & (k < idx[j + 1])
-        if np.any(sel):
-            out[sel] = part.derivative(tk[sel]) if derivative else part(tk[sel])
-    return out
-
-
-def _segments(d, t):
-    """Split the grid into segments with one Sinusoids each: list of (k0, k1, Sinusoids|None)."""
-    if isinstance(d, Sinusoids):
-        return [(0, t.size - 1, d)]
-    if not isinstance(d, Piecewise):
-        raise TypeError(f"d must be Sinusoids or Piecewise, found {type(d).__name__}")
-    idx = [min(max(k, 0), t.size - 1) for k in _break_indices(d, t)]
-    out = []
-    if idx[0] > 0:
-        out.append((0, idx[0], None))
-    for j, part in enumerate(d.parts):
-        if idx[j + 1] > idx[j]:
-            out.append((idx[j], idx[j + 1], part))
-    if idx[-1] < t.size - 1:
-        out.append((idx[-1], t.size - 1, None))
-    return out
-
-
-def _particular_steps(As, B, pieces, t):
-    """x_p of every mode at the left and right end of every step [t_k, t_{k+1}), using the
-    sinusoids of the piece that owns the step (``pieces``: :func:`_segments`). Returns two
-    (I, N − 1, n) arrays."""
-    n, N = As[0].shape[0], t.size
-    left = np.zeros((len(As), N - 1, n))
-    right = np.zeros((len(As), N - 1, n))
-    for k0, k1, part in pieces:
-        if part is None or k1 <= k0:
-            continue
-        xps, _ = _particular_many(As, B, part, t[k0:k1 + 1])
-        for m, xp in enumerate(xps):
-            left[m, k0:k1] = xp[:-1]
-            right[m, k0:k1] = xp[1:]
-    return left, right
-
-
-def _law_matrices(psis, Qs):
-    """Stack the quadratic forms of the switching law: W_i = [[ψ11 Q, ψ12 Q], [ψ21 Q, ψ22 Q]]."""
-    return np.array([np.kron(p, Q) for p, Q in zip(psis, Qs, strict=True)])
-
-
-def _law_weights(n, n_modes, law_bands, law_Q, law_weights, where=""):
-    """The law's quadratic forms, (I, 2n, 2n) on [ẋ; x] or (I, 3n, 3n) on [ẍ; ẋ; x].
-
-    Either ``law_bands`` and ``law_Q`` (paper eq. (31): W_i = Re Ψ_i ⊗ Q_i) or ``law_weights``
-    (any symmetric W_i; those of size 2n are placed on the [ẋ; x] block when another is 3n)."""
-    if n_modes == 1:
-        if law_weights is not None or law_bands is not None or law_Q is not None:
-            raise ValueError(f"{where}a single mode has no switching law: leave law_bands, law_Q "
-                             "and law_weights unset")
-        return np.zeros((1, 2 * n, 2 * n))
-    if law_weights is not None:
-        if law_bands is not None or law_Q is not None:
-            raise ValueError(f"{where}give either law_weights or law_bands with law_Q, not both")
-        if not isinstance(law_weights, list | tuple) or len(law_weights) != n_modes:
-            raise ValueError(f"{where}law_weights must be a list with one matrix per mode "
-                             f"({n_modes} modes), found {type(law_weights).__name__}")
-        Ws = []
-        for i, W in enumerate(law_weights):
-            W = np.asarray(as_matrix(f"{where}law_weights[{i}]", W, square=True))
-            if W.shape[0] not in (2 * n, 3 * n):
-                raise DimensionError(f"{where}law_weights[{i}] must be ({2 * n}, {2 * n}) on [ẋ; x] "
-                                     f"or ({3 * n}, {3 * n}) on [ẍ; ẋ; x], but found {W.shape}")
-            if not np.allclose(W, W.T, rtol=1e-12, atol=1e-12 * max(1.0, float(np.abs(W).max()))):
-                raise ValueError(f"{where}law_weights[{i}] must be symmetric")
-            Ws.append(W)
-        q = max(W.shape[0] for W in Ws)
-        out = np.zeros((n_modes, q, q))
-        for i, W in enumerate(Ws):
-            out[i, q - W.shape[0]:, q - W.shape[0]:] = W
-        return out
-    for name, value in (("law_bands", law_bands), ("law_Q", law_Q)):
-        if not isinstance(value, list | tuple) or len(value) != n_modes:
-            raise ValueError(f"{where}{name} must be a list with one entry per mode ({n_modes} "
-                             f"modes), found {type(value).__name__}"
-                             + (f" of length {len(value)}" if isinstance(value, list | tuple) else ""))
-    if not all(isinstance(b, Band) for b in law_bands):
-        raise TypeError(f"{where}law_bands must be a list of fdsc.Band")
-    Qs = []
-    for i, Q in enumerate(law_Q):
-        try:
-            Qs.append(check_weight(Q, n))
-        except (ValueError, TypeError) as exc:
-            raise type(exc)(f"{where}law_Q[{i}]: {exc}") from None
-    return _law_matrices([b.psi.real for b in law_bands], Qs)
-
-
-def _kernel_numpy(Phi, left, right, A, B, d, dd, W, x0, sigma0, candidate, rparams, ring, ring_sum,
-                  istate):
-    """Reference implementation of the compiled kernel (:func:`fdsc._simulate_kernel.kernel`) in
-    NumPy arithmetic and a plain Python loop, with ``x_p`` at both ends of every step evaluated
-    beforehand from NumPy's cos and sin (``left``, ``right``); the rule is the same function run
-    by the interpreter."""
-    n_modes, n = A.shape[0], A.shape[1]
-    second = W.shape[1] == 3 * n
-    N = d.shape[0]
-    x = np.empty((N, n))
-    sigma = np.empty(N, np.int64)
-    x[0] = x0
-    prev = sigma0
-    eff = np.empty(n_modes)
-    for k in range(N):
-        xk = x[k]
-        if n_modes > 1:
-            Am = A if candidate else np.broadcast_to(A[prev], A.shape)
-            xd = Am @ xk + B * d[k]
-            parts = [xd, np.broadcast_to(xk, (n_modes, n))]
-            if second:
-                parts.insert(0, np.einsum("irc,ic->ir", Am, xd) + B * dd[k])
-            v = np.concatenate(parts, axis=1)
-            scores = np.einsum("ir,irc,ic->i", v, W, v)
-            prev = apply_rule.py_func(scores, scores.shape[0], prev, k, rparams, ring, ring_sum, istate, eff)
-        sigma[k] = prev
-        if k + 1 < N:
-            x[k + 1] = right[prev, k] + Phi[prev] @ (xk - left[prev, k])
-    return x, sigma
-
-
 def estimate_memory(n_steps: int, n_states: int, n_outputs: int, n_modes: int, n_tones: int = 1,
                     *, n_pieces: int = 1, longest_piece: int | None = None,
                     kernel: str = "numba") -> int:
@@ -485,38 +298,6 @@ def envelope(t: ArrayLike, y: ArrayLike, every: int) -> tuple[np.ndarray, np.nda
     every = as_count("every", every)
     starts = np.arange(0, t.size, every)
     return t[starts], np.minimum.reduceat(y, starts, axis=0), np.maximum.reduceat(y, starts, axis=0)
-
-
-def _is_one_system(obj):
-    """True for an LTISystem, a StateSpace or an (A, B, C, D) tuple of arrays (not of systems)."""
-    if isinstance(obj, LTISystem) or type(obj).__name__ == "StateSpace":
-        return True
-    return isinstance(obj, tuple) and len(obj) == 4 and all(
-        isinstance(a, np.ndarray | list | tuple | int | float) and not _is_one_system(a) for a in obj)
-
-
-def _as_modes(modes):
-    """One system, or a non-empty list or tuple of systems, as a list of :class:`LTISystem`."""
-    if _is_one_system(modes):
-        return [as_system(modes, "modes")]
-    if not isinstance(modes, list | tuple) or not modes:
-        raise TypeError("modes must be a system (LTISystem, StateSpace or (A, B, C, D)) or a "
-                        f"non-empty list of systems, but found {type(modes).__name__}")
-    return [as_system(m, f"modes[{k}]") for k, m in enumerate(modes)]
-
-
-def _shared_input(modes, where=""):
-    """n, B, D of modes that share B, D and their dimensions, with a scalar disturbance."""
-    n = modes[0].n_states
-    B, D = modes[0].B, modes[0].D
-    for k, m in enumerate(modes[1:], start=1):
-        if m.A.shape != (n, n) or not np.array_equal(m.B, B) or m.C.shape != modes[0].C.shape \
-                or not np.array_equal(m.D, D):
-            raise ValueError(f"{where}modes must share B, D and the state and output dimensions; "
-                             f"mode {k} differs from mode 0")
-    if B.shape[1] != 1:
-        raise ValueError(f"{where}the disturbance must be scalar (B of shape (n, 1)), found {B.shape}")
-    return n, B, D
 
 
 def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,

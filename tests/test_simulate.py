@@ -113,8 +113,8 @@ def test_compiled_kernel_needs_the_trajectories_and_its_tone_tables():
     # the compiled kernel builds no per-step particular solutions: less than a third of the
     # reference's memory for the paper's sizes (n = 2, p = 3, two modes, six tones) ...
     from fdsc import Piecewise
-    from fdsc._simulate_kernel import tone_tables
-    from fdsc.simulate import _segments, estimate_memory
+    from fdsc._simulate_kernel import _segments, tone_tables
+    from fdsc.simulate import estimate_memory
 
     assert 3 * estimate_memory(10**6, 2, 3, 2, 6) < estimate_memory(10**6, 2, 3, 2, 6, kernel="numpy")
     with pytest.raises(ValueError, match="kernel"):
