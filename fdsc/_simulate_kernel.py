@@ -31,21 +31,51 @@ __all__ = []
 PHASOR_BLOCK = 512
 
 
-def _break_indices(d, t):
-    """The grid index of every break of a Piecewise (not clipped to the grid).
+#: A break of a Piecewise lies on the grid if it is within this fraction of dt of a grid point
+#: (plus the rounding of t); breaks outside the run need not lie on it.
+BREAK_RTOL = 1e-6
 
-    A break must lie on the grid up to rounding (within 1e-9 relative); the run cuts the pieces
-    there by index, so a t_k that lies an ulp below a break still belongs to the piece that starts
-    at the break, for the steps (:func:`_segments`) and the samples (:func:`_samples`) alike."""
+
+def break_index(b, t0, dt, N, where=""):
+    """The grid index of a break ``b`` of a Piecewise on the grid ``t0 + k dt``, k = 0 … N − 1 (not
+    clipped to the grid).
+
+    A break inside the run must lie on the grid within ``BREAK_RTOL · dt`` (plus the rounding of
+    t): the run cuts the pieces there by index, so a t_k an ulp below a break still belongs to the
+    piece that starts at the break, for the steps and the samples alike. A break outside the run
+    need not: its index is that of the first grid point at or after it (≤ 0 before the run, ≥ N
+    after it)."""
+    b, t0, dt = float(b), float(t0), float(dt)
+    x = (b - t0) / dt
+    tol = BREAK_RTOL + 16 * np.finfo(float).eps * max(abs(b), abs(t0), dt) / dt
+    k = round(x)
+    if abs(x - k) <= tol:
+        return k
+    if x < 0 or x > N - 1:
+        return math.ceil(x)
+    raise ValueError(f"{where}the disturbance switches at t = {b!r} s, which is not on the grid "
+                     f"(it lies {abs(x - k):.3g} steps of dt = {dt!r} s from the nearest point); "
+                     "choose dt dividing every break")
+
+
+def check_resolved(d, dt, where=""):
+    """Refuse a disturbance with a tone at or above the Nyquist frequency π/dt of the grid: its
+    samples are those of a slower tone (the states stay exact, but d on the grid, the law's
+    inputs and every energy by Simpson's rule on the samples would be of that slower tone)."""
+    parts = d.parts if isinstance(d, Piecewise) else (d,)
+    dt = float(dt)
+    for j, part in enumerate(parts):
+        if part.frequencies.size and part.frequencies.max() * dt >= math.pi:
+            which = f"piece {j} of the disturbance" if isinstance(d, Piecewise) else "the disturbance"
+            raise ValueError(f"{where}dt = {dt!r} s does not resolve {which}: its tone at "
+                             f"{part.frequencies.max():g} rad/s is at or above the Nyquist frequency "
+                             f"π/dt = {math.pi / dt:.6g} rad/s; choose dt < π/ω for every tone")
+
+
+def _break_indices(d, t):
+    """The grid index of every break of a Piecewise on the grid ``t`` (:func:`break_index`)."""
     dt = t[1] - t[0]
-    idx = []
-    for b in d.breaks:
-        k = round((b - t[0]) / dt)
-        if abs(t[0] + k * dt - b) > 1e-9 * max(1.0, abs(b)):
-            raise ValueError(f"the disturbance switches at t = {b:g}, which is not on the grid "
-                             f"(dt = {dt:g}); choose dt dividing every break")
-        idx.append(k)
-    return idx
+    return [break_index(b, t[0], dt, t.size) for b in d.breaks]
 
 
 def _samples(d, t, derivative=False, points=None):

@@ -9,7 +9,7 @@ import numpy as np
 from scipy.linalg import expm
 
 from ._modes import LAWS, _as_modes, _law_weights, _shared_input
-from ._simulate_kernel import PHASOR_BLOCK, rotations
+from ._simulate_kernel import PHASOR_BLOCK, break_index, check_resolved, rotations
 from ._stream_types import Case
 from ._validation import as_choice, as_count, as_positive, as_vector, check_type
 from .frequency import check_no_pole_at
@@ -20,6 +20,8 @@ __all__ = []
 
 
 _KIND_SINES, _KIND_ZOH, _KIND_FOH = 0, 1, 2
+#: Most steps of one run: its step index is a 64-bit integer.
+MAX_STEPS = 2**62
 _LAW_CODE = {"previous": 0, "candidate": 1}
 
 
@@ -28,7 +30,7 @@ def _steps_of(name, seconds, dt, where, *, even=False):
     seconds = as_positive(name, seconds)
     k = round(seconds / dt)
     if k < 1 or abs(k * dt - seconds) > 1e-9 * seconds:
-        raise ValueError(f"{where}{name} ({seconds:g} s) must be a multiple of dt ({dt:g} s)")
+        raise ValueError(f"{where}{name} ({seconds!r} s) must be a multiple of dt ({dt!r} s)")
     if even and k % 2:
         raise ValueError(f"{where}{name} ({seconds:g} s) must be an even number of steps of dt = "
                          f"{dt:g} s (the running integrals use Simpson's rule); found {k} steps")
@@ -39,14 +41,7 @@ def _segments(d, N, dt, where):
     """Point segments [start_s, start_{s+1}) and their Sinusoids (None: d = 0 there)."""
     if isinstance(d, Sinusoids):
         return [0, N], [d]
-    starts, parts = [0], []
-    idx = []
-    for b in d.breaks:
-        k = round(b / dt)
-        if abs(k * dt - b) > 1e-9 * max(1.0, abs(b)):
-            raise ValueError(f"{where}the disturbance switches at t = {b:g}, which is not on the grid "
-                             f"(dt = {dt:g}); choose dt dividing every break")
-        idx.append(min(max(k, 0), N))
+    idx = [min(max(break_index(b, 0.0, dt, N, where), 0), N) for b in d.breaks]
     pieces = [(0, idx[0], None)] + [(idx[j], idx[j + 1], p) for j, p in enumerate(d.parts)] \
         + [(idx[-1], N, None)]
     starts, parts = [], []
@@ -73,7 +68,10 @@ def _prepare(case, where, cumulative_every, trace_every, dwell_edges):
     horizon = as_positive(f"{where}horizon", case.horizon)
     steps = round(horizon / dt)
     if steps < 1 or abs(steps * dt - horizon) > 1e-9 * horizon:
-        raise ValueError(f"{where}horizon ({horizon:g}) must be a multiple of dt ({dt:g})")
+        raise ValueError(f"{where}horizon ({horizon!r}) must be a multiple of dt ({dt!r})")
+    if steps >= MAX_STEPS:
+        raise ValueError(f"{where}horizon / dt = {steps:.3g} steps: at most {MAX_STEPS:.3g} steps "
+                         "(the step index is a 64-bit integer); enlarge dt or shorten the horizon")
     N = steps + 1
     x0 = np.zeros(n) if case.x0 is None else np.array(as_vector(f"{where}x0", case.x0, n))
     A = np.array([m.A for m in modes])
@@ -87,14 +85,15 @@ def _prepare(case, where, cumulative_every, trace_every, dwell_edges):
                ring_len=ring.shape[0])
     if isinstance(case.d, Sampled):
         if abs(case.d.dt - dt) > 1e-12 * dt:
-            raise ValueError(f"{where}d is sampled every {case.d.dt:g} s but the run steps by "
-                             f"dt = {dt:g} s; they must be equal")
+            raise ValueError(f"{where}d is sampled every {case.d.dt!r} s but the run steps by "
+                             f"dt = {dt!r} s; they must be equal")
         if case.d.values.size < N:
             raise ValueError(f"{where}d has {case.d.values.size} samples but the horizon needs {N}")
         G0, G1 = _hold_matrices(A, B, dt)
         out.update(kind=_KIND_ZOH if case.d.hold == "zoh" else _KIND_FOH, u=case.d.values[:N],
                    G0=G0, G1=G1, seg_start=np.array([0, N]), segments=[None])
     else:
+        check_resolved(case.d, dt, where)
         seg_start, parts = _segments(case.d, N, dt, where)
         out.update(kind=_KIND_SINES, u=np.zeros(0), G0=np.zeros((nm, n)), G1=np.zeros((nm, n)),
                    seg_start=np.array(seg_start, dtype=np.int64), segments=parts)
@@ -112,15 +111,22 @@ def _prepare(case, where, cumulative_every, trace_every, dwell_edges):
     if dwell_edges is None:
         edges = 2 ** np.arange(0, max(2, math.ceil(math.log2(N)) + 2), dtype=np.int64)
     else:
-        e = np.asarray(dwell_edges, dtype=float)
-        if e.ndim != 1 or e.size < 2 or np.any(np.isnan(e)) or np.any(np.diff(e) <= 0) or e[0] < 0:
+        try:
+            e = np.asarray(dwell_edges, dtype=float)
+        except (TypeError, ValueError):
+            e = np.full(1, np.nan)
+        if e.ndim != 1 or e.size < 2 or np.any(np.isnan(e)) or not np.all(np.diff(e) > 0) or e[0] < 0 \
+                or np.any(np.isinf(e[:-1])):
             raise ValueError(f"{where}dwell_edges must be at least 2 increasing times ≥ 0 (s; the "
                              f"last may be inf), found {dwell_edges!r}")
-        # edges beyond the horizon (inf included) all mean "longer than any dwell of this run"
-        edges = np.round(np.minimum(e, horizon + (np.arange(e.size) + 1) * dt) / dt).astype(np.int64)
-        if np.any(np.diff(edges) <= 0):
-            raise ValueError(f"{where}dwell_edges must be at least one step (dt = {dt:g} s) apart, "
-                             f"found {e.tolist()}")
+        # edges beyond the horizon (inf included) all mean "longer than any dwell of this run";
+        # the others count steps, so they must lie on the grid (as cumulative_every, trace_every)
+        k = np.round(np.minimum(e, horizon + (np.arange(e.size) + 1) * dt) / dt)
+        off = (e <= horizon) & (np.abs(k * dt - e) > 1e-9 * np.maximum(e, dt))
+        if np.any(off):
+            raise ValueError(f"{where}dwell_edges must be multiples of dt = {dt!r} s (dwell times are "
+                             f"whole steps), found {float(e[off][0])!r} s")
+        edges = k.astype(np.int64)
     out["dwell_edges"] = edges
     return out
 

@@ -25,7 +25,7 @@ from numpy.typing import ArrayLike
 from scipy.linalg import expm
 
 from ._modes import LAWS, _as_modes, _law_weights, _shared_input
-from ._simulate_kernel import PHASOR_BLOCK, _samples, _segments, tone_tables
+from ._simulate_kernel import PHASOR_BLOCK, _samples, _segments, check_resolved, tone_tables
 from ._simulate_kernel import kernel as _compiled_kernel
 from ._simulate_reference import _kernel_numpy, _particular_many, _particular_steps
 from ._validation import as_choice, as_count, as_matrix, as_positive, as_vector, check_type
@@ -398,6 +398,7 @@ def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
     t, dt = _check_grid(t)
     x0 = np.zeros(n) if x0 is None else np.array(as_vector("x0", x0, n))
     n_tones = max(p.frequencies.size for p in (d.parts if isinstance(d, Piecewise) else (d,)))
+    check_resolved(d, dt)
     pieces = _segments(d, t)
     need = estimate_memory(t.size, n, modes[0].n_outputs, n_modes, n_tones, n_pieces=len(pieces),
                            longest_piece=max(k1 - k0 for k0, k1, _ in pieces), kernel=kernel)

@@ -391,7 +391,16 @@ def test_divergence_is_an_error_alone_and_a_flag_in_a_batch():
     (dict(cumulative_every=0.0025), ValueError, "multiple of dt"),
     (dict(trace_every=-1.0), ValueError, "trace_every"),
     (dict(dwell_edges=[1.0, 0.5]), ValueError, "dwell_edges"),
-    (dict(dwell_edges=[1e-4, 2e-4, 1.0]), ValueError, "at least one step"),
+    (dict(dwell_edges=[1e-4, 2e-4, 1.0]), ValueError, "dwell_edges must be multiples of dt"),
+    (dict(dwell_edges=[0.0014, 0.0031, 1.0]), ValueError, "dwell_edges must be multiples of dt"),
+    (dict(dwell_edges=[1.0, np.inf, np.inf]), ValueError, "dwell_edges must be at least 2 increasing"),
+    (dict(dwell_edges=["a", "b"]), ValueError, "dwell_edges must be at least 2 increasing"),
+    (dict(horizon=1e19, dt=1.0), ValueError, "at most 4.61e\\+18 steps"),
+    (dict(d=Sinusoids([1.0], [2 * np.pi / 0.1]), dt=0.1), ValueError, "does not resolve the disturbance"),
+    (dict(d=Piecewise([0.0, 0.5, 1.0], [Sinusoids([1.0], [1.0]), Sinusoids([1.0], [40.0])]), dt=0.1),
+     ValueError, "does not resolve piece 1 of the disturbance"),
+    (dict(d=Piecewise([0.0, 1.4e-10, 1e-9], [Sinusoids([1.0], [0.0]), Sinusoids([2.0], [0.0])]),
+          horizon=1e-9, dt=1e-10), ValueError, "1.4e-10 s, which is not on the grid"),
     (dict(cumulative_every=4.0), ValueError, "exceeds the horizon"),
     (dict(modes=[SCALAR, SCALAR], law_bands=Band.lf(1.0), law_Q=[[[1.0]]] * 2), ValueError,
      "law_bands must be a list with one entry per mode"),
@@ -651,3 +660,25 @@ def test_a_short_run_uses_a_specialized_loop_already_loaded(monkeypatch):
     sizes = [sum(len(t) for t in tag) for tag in tags]
     assert sizes[:2] == [21, 0] and (sizes[2] == 0 or _stream_run._has_loop_for(tags[2]))
     assert short.energy == forced.energy == general.energy and short.switches == general.switches
+
+
+def test_breaks_outside_the_run_need_not_lie_on_the_grid():
+    # a break before the start or after the end of the run cuts no step: off the grid it is
+    # accepted and the run is that of the same disturbance with the break moved onto the grid
+    from fdsc.simulate import simulate, time_grid
+
+    one, two = Sinusoids([1.0], [3.0]), Sinusoids([0.5], [7.0], [0.3])
+    off = Piecewise([-0.00035, 0.5, 2.00005], [one, two])
+    on = Piecewise([0.0, 0.5, 3.0], [one, two])
+    for closed in (True, False):
+        a = simulate_stream(SCALAR, off, 1.0, 1e-3, closed_form=closed)
+        b = simulate_stream(SCALAR, on, 1.0, 1e-3, closed_form=closed)
+        assert (a.energy, a.input_energy) == (b.energy, b.input_energy) and a.input_energy > 0.1
+    t = time_grid(1.0, 1e-3)
+    assert np.array_equal(simulate(SCALAR, off, t).x, simulate(SCALAR, on, t).x)
+    # inside the run the same offset is refused, by both simulators
+    inside = Piecewise([0.0, 0.50035, 3.0], [one, two])
+    with pytest.raises(ValueError, match="0.50035 s, which is not on the grid"):
+        simulate_stream(SCALAR, inside, 1.0, 1e-3)
+    with pytest.raises(ValueError, match="0.50035 s, which is not on the grid"):
+        simulate(SCALAR, inside, t)
