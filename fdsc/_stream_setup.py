@@ -115,8 +115,8 @@ def _prepare(case, where, cumulative_every, trace_every, dwell_edges):
             e = np.asarray(dwell_edges, dtype=float)
         except (TypeError, ValueError):
             e = np.full(1, np.nan)
-        if e.ndim != 1 or e.size < 2 or np.any(np.isnan(e)) or not np.all(np.diff(e) > 0) or e[0] < 0 \
-                or np.any(np.isinf(e[:-1])):
+        if e.ndim != 1 or e.size < 2 or np.any(np.isnan(e)) or np.any(np.isinf(e[:-1])) \
+                or not np.all(np.diff(e) > 0) or e[0] < 0:
             raise ValueError(f"{where}dwell_edges must be at least 2 increasing times ≥ 0 (s; the "
                              f"last may be inf), found {dwell_edges!r}")
         # edges beyond the horizon (inf included) all mean "longer than any dwell of this run";
