@@ -18,6 +18,18 @@ __all__ = []
 _SUM_BLOCK = 1024
 
 
+@njit(cache=True)
+def _neumaier_add(s, c, b):
+    """``s + b``, and the compensation ``c`` plus what that sum rounded off (Neumaier): the
+    compensated total is ``(s + b) + c``."""
+    t = s + b
+    if abs(s) >= abs(b):
+        c += (s - t) + b
+    else:
+        c += (b - t) + s
+    return t, c
+
+
 def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
                kind, seg_start, seg_nt, omega, amp, phase, Gr, Gi, Rre, Rim,
                u, G0, G1, cum_every, trace_every, dwell_edges, rparams, ring, ring_sum, istate,
@@ -231,18 +243,8 @@ def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
         wgt = 2.0 if wgt == 4.0 else 4.0
         if k - kblock == _SUM_BLOCK - 1:
             kblock = k + 1
-            t_ = sz + bz
-            if abs(sz) >= abs(bz):
-                cz += (sz - t_) + bz
-            else:
-                cz += (bz - t_) + sz
-            sz = t_
-            t_ = sd + bd
-            if abs(sd) >= abs(bd):
-                cd += (sd - t_) + bd
-            else:
-                cd += (bd - t_) + sd
-            sd = t_
+            sz, cz = _neumaier_add(sz, cz, bz)
+            sd, cd = _neumaier_add(sd, cd, bd)
             bz = 0.0
             bd = 0.0
         fz3 = fz2
