@@ -127,6 +127,10 @@ def _prepare(case, where, cumulative_every, trace_every, dwell_edges):
             raise ValueError(f"{where}dwell_edges must be multiples of dt = {dt!r} s (dwell times are "
                              f"whole steps), found {float(e[off][0])!r} s")
         edges = k.astype(np.int64)
+        if np.any(np.diff(edges) <= 0):
+            # edges beyond the horizon need not lie on the grid, so two may round to one step
+            raise ValueError(f"{where}dwell_edges must be at least one step (dt = {dt!r} s) apart, "
+                             f"found {e.tolist()}")
     out["dwell_edges"] = edges
     return out
 

@@ -393,6 +393,7 @@ def test_divergence_is_an_error_alone_and_a_flag_in_a_batch():
     (dict(dwell_edges=[1.0, 0.5]), ValueError, "dwell_edges"),
     (dict(dwell_edges=[1e-4, 2e-4, 1.0]), ValueError, "dwell_edges must be multiples of dt"),
     (dict(dwell_edges=[0.0014, 0.0031, 1.0]), ValueError, "dwell_edges must be multiples of dt"),
+    (dict(dwell_edges=[0.5, 1.0, 1.0004]), ValueError, "at least one step"),
     (dict(dwell_edges=[1.0, np.inf, np.inf]), ValueError, "dwell_edges must be at least 2 increasing"),
     (dict(dwell_edges=["a", "b"]), ValueError, "dwell_edges must be at least 2 increasing"),
     (dict(horizon=1e19, dt=1.0), ValueError, "at most 4.61e\\+18 steps"),
