@@ -17,6 +17,7 @@ import fdsc
 
 from .._validation import as_count
 from .cache import cached
+from .comparators import HF_BEST, comparators
 from .data import (
     STATIONARY_DT,
     STATIONARY_HORIZON,
@@ -46,15 +47,14 @@ __all__ = [
     "record_part",
 ]
 
-#: Name of the best certified HF design (:func:`fdsc.paper.passive_controllers.hf_best`).
-HF_BEST = "HF best"
 #: FDSC as printed but with a minimum dwell time (chapter 'wellposed_laws').
 FDSC_DWELL = "FDSC (dwell)"
 #: FDSC with K_f1 on Ω_1 and the best HF design on Ω_3, Q's by paper Remark 4.
 FDSC_HF_BEST = "FDSC (HF best)"
 
-#: The fixed gains compared, in order.
-FIXED = (OPEN_LOOP, "PassC-EF", "PassC-LF", "PassC-HF", HF_BEST)
+#: The fixed gains compared, in order: the comparator set of the aircraft
+#: (:data:`fdsc.paper.comparators.COMPARATORS`).
+FIXED = comparators("aircraft")
 #: The switched controllers compared, in order.
 SWITCHED = ("FDSC", FDSC_DWELL, FDSC_HF_BEST)
 

@@ -14,6 +14,7 @@ from concurrent.futures import ProcessPoolExecutor
 from . import (
     baselines,
     claims,
+    comparators,
     frequency_ranges,
     frequency_selective,
     generic_example,
@@ -95,7 +96,7 @@ def figure_status(record):
 #: The chapters that contribute to the record, in the record's order (first the printed inputs).
 CHAPTERS = (inputs, frequency_ranges, gkyp_lemma, passive_controllers, frequency_selective, theorem1,
             theorem1_counterexamples, switching_law, stationary, nonstationary, wellposed, three_mode,
-            baselines, generic_example, monte_carlo)
+            baselines, generic_example, monte_carlo, comparators)
 
 
 #: Environment variable: how many processes compute the record's chapters (default: the number

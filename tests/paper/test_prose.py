@@ -1,0 +1,51 @@
+"""fdsc.paper.prose: the one number formatter of the book's prose."""
+
+import numpy as np
+import pytest
+
+from fdsc.paper.prose import count, num, pct, span, times
+
+
+@pytest.mark.parametrize(("x", "digits", "text"), [
+    (7.0, 3, "7.00"),               # .3g would drop the zeros ("0.436 to 7 times")
+    (0.43593, 3, "0.436"),
+    (1.0, 3, "1.00"),
+    (118.82, 3, "119"),
+    (99999.5, 3, "1.00 × 10⁵"),     # rounds up across the switch to powers of ten
+    (1.149e7, 3, "1.15 × 10⁷"),
+    (2.7e-26, 2, "2.7 × 10⁻²⁶"),
+    (-0.0128, 3, "−0.0128"),
+    (0.0, 3, "0.00"),
+    (np.float64(22.534), 3, "22.5"),
+    (float("nan"), 3, "n/a"),
+    (float("-inf"), 3, "−∞"),
+])
+def test_num(x, digits, text):
+    assert num(x, digits) == text
+
+
+def test_integers_print_in_full():
+    assert num(37493) == "37,493" and num(np.int64(20)) == "20" and count(-1200) == "−1,200"
+
+
+def test_times_and_span():
+    assert times(1.0) == "×1.00"
+    assert span(1.3601, 1.3649) == "1.36"          # equal ends print once ("1.36 – 1.36")
+    assert span(0.436, 7.0) == "0.436–7.00"
+    assert span(0.5, 2.0, fmt=times) == "×0.500–×2.00"
+    assert pct(0.04) == "4 %" and pct(1.0) == "100 %"
+
+
+@pytest.mark.parametrize(("call", "error", "match"), [
+    (lambda: num(True), TypeError, "x must be a real number"),
+    (lambda: num("0.5"), TypeError, "x must be a real number"),
+    (lambda: num(0.5, 0), ValueError, "digits must be at least 1"),
+    (lambda: count(2.0), TypeError, "n must be an integer"),
+    (lambda: count(np.True_), TypeError, "n must be an integer"),
+    (lambda: pct(1.2), ValueError, r"share must lie in \[0, 1\]"),
+    (lambda: pct(float("nan")), ValueError, r"share must lie in \[0, 1\]"),
+    (lambda: times(None), TypeError, "x must be a real number"),
+])
+def test_bad_inputs(call, error, match):
+    with pytest.raises(error, match=match):
+        call()
