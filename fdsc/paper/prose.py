@@ -38,7 +38,8 @@ def num(x, digits=3):
     -------
     str
         ``∞``/``−∞`` and ``n/a`` (NaN) for non-finite values; magnitudes ≥ 10⁵ or below 10⁻³ as
-        ``m × 10ᵉ``; minus signs as U+2212.
+        ``m × 10ᵉ``; magnitudes with more integer digits than ``digits`` as a whole number with
+        thousands separators; minus signs as U+2212.
 
     Raises
     ------
@@ -51,8 +52,8 @@ def num(x, digits=3):
     --------
     >>> num(7.0), num(0.43593), num(22.534), num(118.82), num(1.149e7), num(37493)
     ('7.00', '0.436', '22.5', '119', '1.15 × 10⁷', '37,493')
-    >>> num(-0.0128), num(2.7e-26, 2), num(float("inf"))
-    ('−0.0128', '2.7 × 10⁻²⁶', '∞')
+    >>> num(-0.0128), num(2.7e-26, 2), num(float("inf")), num(1092.79), num(999.7)
+    ('−0.0128', '2.7 × 10⁻²⁶', '∞', '1,093', '1,000')
     """
     if isinstance(x, Integral) and not isinstance(x, bool | np.bool_):
         return count(x)
@@ -66,10 +67,9 @@ def num(x, digits=3):
     if v != 0 and (abs(v) >= 1e5 or abs(v) < 1e-3):
         mantissa, exponent = f"{v:.{digits - 1}e}".split("e")
         return f"{mantissa} × 10{str(int(exponent)).translate(_SUPERSCRIPT)}".replace("-", "−")
-    text = f"{v:#.{digits}g}"
-    if "e" in text:        # e.g. 99999.5 rounds up to 1.00e+05 at 3 digits
-        return num(float(text), digits)
-    return text.rstrip(".").replace("-", "−")
+    if abs(v) >= 10 ** digits - 0.5:   # more integer digits than asked: the whole number
+        return count(round(v)) if abs(round(v)) < 100_000 else num(float(round(v)), digits)
+    return f"{v:#.{digits}g}".rstrip(".").replace("-", "−")
 
 
 def count(n):
@@ -178,14 +178,26 @@ def pct(share, digits=0):
     return f"{100 * v:.{digits}f} %"
 
 
+class _Text:
+    """Text whose plain representation is the text itself (a glued ``str`` would print with
+    quotes: MyST-NB's ``{glue:text}`` shows the ``text/plain`` form, which for a ``str`` is its
+    ``repr``)."""
+
+    def __init__(self, text):
+        self.text = text
+
+    def __repr__(self):
+        return self.text
+
+
 def glue_numbers(numbers, prefix=""):
     """Glue every ``{name: value}`` for the prose (``{glue:text}`prefix+name```), not displayed.
 
     Parameters
     ----------
     numbers : mapping of str to object
-        Usually a result's ``prose()``: formatted text, or a ``Markdown`` object for
-        ``{glue:md}``.
+        Usually a result's ``prose()``: formatted text (glued without quotes, for
+        ``{glue:text}``), or any other object (e.g. ``Markdown`` for ``{glue:md}``), glued as is.
     prefix : str, optional
         Put before every name (a chapter's results share one namespace per page).
 
@@ -205,6 +217,6 @@ def glue_numbers(numbers, prefix=""):
     for key, value in numbers.items():
         if not isinstance(key, str):
             raise TypeError(f"numbers must be keyed by str, but found {type(key).__name__} {key!r}")
-        glue(prefix + key, value, display=False)
+        glue(prefix + key, _Text(value) if isinstance(value, str) else value, display=False)
         names.append(prefix + key)
     return names

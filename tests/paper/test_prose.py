@@ -12,6 +12,8 @@ from fdsc.paper.prose import count, num, pct, span, times
     (1.0, 3, "1.00"),
     (118.82, 3, "119"),
     (99999.5, 3, "1.00 × 10⁵"),     # rounds up across the switch to powers of ten
+    (1092.79, 3, "1,093"),          # more integer digits than asked: the whole number
+    (999.7, 3, "1,000"),
     (1.149e7, 3, "1.15 × 10⁷"),
     (2.7e-26, 2, "2.7 × 10⁻²⁶"),
     (-0.0128, 3, "−0.0128"),
@@ -49,3 +51,16 @@ def test_times_and_span():
 def test_bad_inputs(call, error, match):
     with pytest.raises(error, match=match):
         call()
+
+
+def test_glued_text_prints_without_quotes(monkeypatch):
+    import myst_nb
+
+    from fdsc.paper import prose
+
+    glued = {}
+    monkeypatch.setattr(myst_nb, "glue", lambda name, value, display: glued.update({name: value}))
+    assert prose.glue_numbers({"a": "×1.00", "b": 2.5}, "p_") == ["p_a", "p_b"]
+    assert repr(glued["p_a"]) == "×1.00" and glued["p_b"] == 2.5
+    with pytest.raises(TypeError, match="numbers must be keyed by str"):
+        prose.glue_numbers({1: "x"})

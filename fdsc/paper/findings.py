@@ -1,0 +1,227 @@
+"""The book's answer on one screen: the findings of the whole reproduction, from the record.
+
+:func:`findings` reads the reproduction record (and, for two numbers the record does not hold, the
+cached chapter results) and returns a :class:`Findings` whose :meth:`~Findings.prose` gives the
+formatted numbers the landing page glues: what was reproduced, whether FDSC pays against the
+{comparator set}, why not, what would pay, and what the paper gets wrong.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .comparators import COMPARATORS, best_fixed
+from .prose import count, num, pct, times
+from .record import PAPER_FIGURES, figure_status
+
+__all__ = ["Findings", "findings", "PRINTED_BOUNDS"]
+
+#: The record entries of the four bounds printed beside the gains (Sec. IV), in the paper's order.
+PRINTED_BOUNDS = ("bound_f1", "bound_f2", "bound_f3", "bound_e")
+_SWITCHED = ("FDSC", "FDSC (dwell)", "FDSC (HF best)")
+_REPRODUCED = ("match", "close")
+_NOT = ("differs", "not reproducible")
+
+
+@dataclass(frozen=True)
+class Findings:
+    """The numbers of the landing page's "Findings at a glance".
+
+    Parameters
+    ----------
+    verdicts : dict
+        ``{verdict: number of entries}`` over the entries that set a printed number beside ours
+        (match, close, differs, not reproducible).
+    claims : dict
+        ``{PASS, PARTLY, FAIL: count}`` of the claims checklist.
+    figures_redrawn, figures_total : int
+        Paper figures redrawn from recorded data, and paper figures with content (Fig. 2, the
+        code-availability box, excluded).
+    n_cases : int
+        Simulation cases of the paper on the aircraft (stationary, ρ_p and ρ_t grids).
+    best_wins : dict
+        ``{fixed controller: cases where it is the best fixed controller}`` over those cases.
+    switched_wins : int
+        Cases where a switched controller has less energy than every fixed one.
+    monte_carlo : dict
+        ``{example: {"draws", "best", "win_rate", "median", "in_advance", "win_rate_advance"}}``
+        for the switched variant with the highest win rate against the best fixed controller of
+        each tone draw.
+    lf_switches : int
+        Switches of the printed law under the LF tones (paper Fig. 4's run).
+    lf_horizon : float
+        Its horizon (s).
+    lf_ratio : float
+        FDSC's energy under the LF tones over PassC-LF's.
+    hf_open_loop_ratio : float
+        The open loop's energy under the HF tones over PassC-HF's.
+    airframe_mode, fast_pole, w_h : float
+        |λ| of the open-loop airframe's modes (rad/s), the fast pole of the K_f1 loop (rad/s), and
+        the HF band's edge ϖ_h (rad/s).
+    ideal : dict
+        ``{example: least energy of the ideal segment law over the best fixed controller's}``
+        along the ρ_t family.
+    crossover, crossover_printed : float
+        ρ_p where FDSC's energy reaches PassC-LF's (paper Fig. 7), ours and printed.
+    bounds : dict
+        ``{printed bound entry: (printed value, verdict)}``.
+    q_gammas : tuple of float
+        γ_1, γ_2 that Theorem 1 certifies with the printed Q's.
+    thm1_feasible, thm1_diverging : int
+        Mode pairs of the counterexample search that Theorem 1 certifies, and those of them that
+        diverge under the printed law (measured ẋ).
+    """
+
+    verdicts: dict
+    claims: dict
+    figures_redrawn: int
+    figures_total: int
+    n_cases: int
+    best_wins: dict
+    switched_wins: int
+    monte_carlo: dict
+    lf_switches: int
+    lf_horizon: float
+    lf_ratio: float
+    hf_open_loop_ratio: float
+    airframe_mode: float
+    fast_pole: float
+    w_h: float
+    ideal: dict
+    crossover: float
+    crossover_printed: float
+    bounds: dict
+    q_gammas: tuple
+    thm1_feasible: int
+    thm1_diverging: int
+
+    def prose(self):
+        """The formatted numbers the landing page quotes.
+
+        Returns
+        -------
+        dict
+            ``{name: text}`` for :func:`fdsc.paper.prose.glue_numbers`.
+        """
+        v, c = self.verdicts, self.claims
+        wins = ", ".join(f"{name} in {count(k)}" for name, k in
+                         sorted(self.best_wins.items(), key=lambda kv: -kv[1]) if k)
+        out = {
+            "n_printed": count(sum(v.values())),
+            "n_reproduced": count(sum(v[k] for k in _REPRODUCED)),
+            "n_match": count(v["match"]), "n_close": count(v["close"]),
+            "n_differs": count(v["differs"]), "n_not_reproducible": count(v["not reproducible"]),
+            "figures_redrawn": count(self.figures_redrawn), "figures_total": count(self.figures_total),
+            "claims_pass": count(c["PASS"]), "claims_partly": count(c["PARTLY"]),
+            "claims_fail": count(c["FAIL"]),
+            "n_cases": count(self.n_cases), "best_wins": wins,
+            "switched_wins": count(self.switched_wins),
+            "lf_switches": count(self.lf_switches), "lf_horizon": num(self.lf_horizon),
+            "lf_ratio": times(self.lf_ratio), "hf_open_loop_ratio": times(self.hf_open_loop_ratio),
+            "airframe_mode": num(self.airframe_mode), "fast_pole": num(self.fast_pole),
+            "w_h": num(self.w_h, 2),
+            "crossover": num(self.crossover), "crossover_printed": num(self.crossover_printed, 1),
+            "q_gamma_1": num(self.q_gammas[0]), "q_gamma_2": num(self.q_gammas[1]),
+            "thm1_feasible": count(self.thm1_feasible), "thm1_diverging": count(self.thm1_diverging),
+        }
+        for example, mc in self.monte_carlo.items():
+            out |= {f"mc_{example}_draws": count(mc["draws"]), f"mc_{example}_best": mc["best"],
+                    f"mc_{example}_win_rate": pct(mc["win_rate"]),
+                    f"mc_{example}_median": times(mc["median"]),
+                    f"mc_{example}_in_advance": mc["in_advance"],
+                    f"mc_{example}_win_rate_advance": pct(mc["win_rate_advance"])}
+        for example, ratio in self.ideal.items():
+            out[f"ideal_{example}"] = times(ratio)
+        bad = [f"{printed} ({verdict})" for printed, verdict in self.bounds.values()
+               if verdict in _NOT]
+        out["bounds_bad"] = count(len(bad))
+        out["bounds_bad_list"] = ", ".join(bad) if bad else "none"
+        return out
+
+
+def _entries(record):
+    return {e["id"]: e for e in record["entries"]}
+
+
+def _monte_carlo(entry):
+    out = {}
+    for example, data in entry["recomputed"].items():
+        rows = [(name, s["tones_oracle"]["win_rate"], s["tones_oracle"]["quantiles"][2],
+                 s["tones_advance"]["win_rate"]) for name, s in data["switched"].items()]
+        name, rate, median, advance = max(rows, key=lambda r: (r[1], -r[2]))
+        out[example] = {"draws": int(data["draws"]), "best": name, "win_rate": float(rate),
+                        "median": float(median), "in_advance": data["in_advance"],
+                        "win_rate_advance": float(advance)}
+    return out
+
+
+def _ideal_generic():
+    from .generic_example import generic_study
+
+    study = generic_study()
+    _, best = best_fixed(study.rho_t_sweep.energy, "generic")
+    return float(np.min(study.ideal_rho_t / best))
+
+
+def findings(record):
+    """The findings of the reproduction, read from the record.
+
+    Parameters
+    ----------
+    record : dict
+        The reproduction record (:func:`fdsc.paper.record.reproduction_record`).
+
+    Returns
+    -------
+    Findings
+
+    Raises
+    ------
+    KeyError
+        If the record lacks an entry the findings need (named).
+    """
+    e = _entries(record)
+    needed = ("comparators", "baselines", "monte_carlo", "mixed_crossover", "thm1_gammas",
+              "theorem1_counterexamples", *PRINTED_BOUNDS)
+    missing = [k for k in needed if k not in e]
+    if missing:
+        raise KeyError(f"the record lacks the entries {missing} that the findings read")
+    verdicts = {v: sum(x["verdict"] == v for x in record["entries"]) for v in _REPRODUCED + _NOT}
+    claims = {v: sum(c["verdict"] == v for c in record["claims"]) for v in ("PASS", "PARTLY", "FAIL")}
+    status = figure_status(record)
+    redrawn = sum(r["status"] == "redrawn from recorded data" for r in status)
+    total = sum(1 for n in PAPER_FIGURES if n != 2)
+    best = e["comparators"]["recomputed"]["aircraft"]["best"]
+    families = ("stationary", "mixed", "piecewise")
+    best_wins = {n: sum(best[f][n] for f in families) for n in COMPARATORS["aircraft"]}
+    base = e["baselines"]["recomputed"]
+    switched_wins = sum(base["wins"].get(n, 0) for n in _SWITCHED)
+    stat = base["stationary"]
+    lf_fig = record["figures"]["lf_outputs"]
+    crossover = e["mixed_crossover"]
+    tc = e["theorem1_counterexamples"]["recomputed"]["counts"]
+    airframe, fast_pole, w_h = _poles()
+    return Findings(
+        verdicts=verdicts, claims=claims, figures_redrawn=redrawn, figures_total=total,
+        n_cases=sum(best_wins.values()), best_wins=best_wins, switched_wins=switched_wins,
+        monte_carlo=_monte_carlo(e["monte_carlo"]),
+        lf_switches=int(lf_fig["switches"]["FDSC"]), lf_horizon=float(lf_fig["horizon"]),
+        lf_ratio=stat["LF"]["FDSC"] / stat["LF"]["PassC-LF"],
+        hf_open_loop_ratio=stat["HF"]["open loop"] / stat["HF"]["PassC-HF"],
+        airframe_mode=airframe, fast_pole=fast_pole, w_h=w_h,
+        ideal={"aircraft": float(min(base["ideal_segment_law_rho_t"]["ratio_to_best_fixed"])),
+               "generic": _ideal_generic()},
+        crossover=float(crossover["recomputed"]["PassC-LF"]), crossover_printed=float(crossover["paper"]),
+        bounds={k: (e[k]["paper"], e[k]["verdict"]) for k in PRINTED_BOUNDS},
+        q_gammas=tuple(float(g) for g in e["thm1_gammas"]["recomputed"]["paper_Q"]),
+        thm1_feasible=int(tc["feasible"]), thm1_diverging=int(tc["diverging_previous"]))
+
+
+def _poles():
+    """|λ| of the airframe's open-loop modes, the fast pole of the K_f1 loop, and ϖ_h."""
+    from .data import aircraft, paper_bands, paper_gains
+
+    plant, gains = aircraft(), paper_gains()
+    airframe = float(np.max(np.abs(np.linalg.eigvals(plant.A))))
+    fast = float(np.max(np.abs(np.linalg.eigvals(plant.A + plant.B2 @ gains["K_f1"]))))
+    return airframe, fast, float(paper_bands()["HF"].lower)

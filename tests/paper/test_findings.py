@@ -1,0 +1,56 @@
+"""fdsc.paper.findings: the landing page's answer, read from the record."""
+
+import numpy as np
+import pytest
+
+from fdsc.paper.baselines import SWITCHED, baselines
+from fdsc.paper.comparators import best_fixed
+from fdsc.paper.findings import PRINTED_BOUNDS, findings
+from fdsc.paper.record import reproduction_record
+
+
+@pytest.fixture(scope="module")
+def found():
+    return findings(reproduction_record())
+
+
+def test_the_cases_and_their_winners_agree_with_the_chapter(found):
+    # recounted independently from the aircraft chapter's scenarios and the comparator set
+    scen = baselines().scenarios
+    assert found.n_cases == len(scen) == 34
+    winners = [best_fixed(s.energy)[0] for s in scen]
+    assert found.best_wins == {n: winners.count(n) for n in found.best_wins}
+    beaten = sum(min(s.energy[n] for n in SWITCHED) < best_fixed(s.energy)[1] for s in scen)
+    assert found.switched_wins == beaten
+
+
+def test_the_numbers_are_the_records(found):
+    rec = reproduction_record()
+    by_id = {e["id"]: e for e in rec["entries"]}
+    assert found.crossover == by_id["mixed_crossover"]["recomputed"]["PassC-LF"] < 0.2
+    assert found.crossover_printed == 0.2
+    assert set(found.bounds) == set(PRINTED_BOUNDS)
+    assert sum(found.verdicts.values()) == sum(
+        e["verdict"] in ("match", "close", "differs", "not reproducible") for e in rec["entries"])
+    assert found.figures_total == 7 and found.figures_redrawn <= 7
+    assert sum(found.claims.values()) == len(rec["claims"])
+    # the ideal segment law can only be compared where it has a value at every ρ_t
+    assert 0 < found.ideal["aircraft"] and 0 < found.ideal["generic"]
+    # the K_f1 loop's fast pole lies above the HF edge, the airframe's modes below it
+    assert found.airframe_mode < found.w_h < found.fast_pole
+    for mc in found.monte_carlo.values():
+        assert 0.0 <= mc["win_rate"] <= 1.0 and mc["draws"] >= 100
+
+
+def test_prose_is_formatted(found):
+    text = found.prose()
+    assert all(isinstance(v, str) for v in text.values())
+    assert text["lf_switches"] == f"{found.lf_switches:,}"
+    assert text["lf_ratio"].startswith("×") and " times" not in " ".join(text.values())
+    assert not any("[" in v or "array" in v for v in text.values())
+    assert np.isclose(float(text["crossover"]), found.crossover, rtol=5e-3)
+
+
+def test_missing_entries_are_named():
+    with pytest.raises(KeyError, match="lacks the entries .*comparators"):
+        findings({"entries": [], "figures": {}, "claims": []})
