@@ -2,8 +2,8 @@
 
 At the start of a build it empties ``<outdir>/../.fdsc-cache`` and sets ``FDSC_CACHE_DIR`` to
 it; the kernels that execute the notebooks inherit the variable, and
-:func:`fdsc.paper.cache.cached` keeps each chapter result there. The introduction's status
-table (built from the whole record) and the chapters then reuse the same values instead of
+:func:`fdsc.paper.cache.cached` keeps each chapter result there. The landing page's findings
+and the report (built from the whole record) and the chapters then reuse the same values instead of
 computing them again. A fresh folder per build keeps builds independent of each other.
 """
 

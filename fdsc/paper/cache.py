@@ -3,7 +3,7 @@
 The book build sets ``FDSC_CACHE_DIR`` to a fresh folder inside its output
 (``book/_ext/result_cache.py``), and a test session to a fresh temporary folder while nbmake
 starts the kernels of the chapters (``conftest.py``); the kernels inherit it: the
-introduction's status table, built from the record, and the chapters then share one computation
+landing page's findings and the report, built from the record, and the chapters then share one computation
 of every result.
 Without the variable (a user's session) nothing is cached, except inside :func:`shared_results`,
 which :func:`fdsc.paper.record.reproduction_record` uses so that the command line computes each

@@ -23,7 +23,7 @@ VERDICT_CLOSE_RTOL = 1e-2
 VERDICTS = ("match", "close", "differs", "not reproducible", "input", "new")
 
 
-#: The verdict rules, stated once (the book's introduction renders this text).
+#: The verdict rules, stated once (the book's reproduction report renders this text).
 VERDICT_RULES = {
     "match": "equal to the printed number to its printed precision (half a unit in its last "
              "printed decimal), entry by entry for matrices",
