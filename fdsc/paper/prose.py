@@ -178,26 +178,17 @@ def pct(share, digits=0):
     return f"{100 * v:.{digits}f} %"
 
 
-class _Text:
-    """Text whose plain representation is the text itself (a glued ``str`` would print with
-    quotes: MyST-NB's ``{glue:text}`` shows the ``text/plain`` form, which for a ``str`` is its
-    ``repr``)."""
-
-    def __init__(self, text):
-        self.text = text
-
-    def __repr__(self):
-        return self.text
-
-
 def glue_numbers(numbers, prefix=""):
     """Glue every ``{name: value}`` for the prose (``{glue:text}`prefix+name```), not displayed.
 
     Parameters
     ----------
     numbers : mapping of str to object
-        Usually a result's ``prose()``: formatted text (glued without quotes, for
-        ``{glue:text}``), or any other object (e.g. ``Markdown`` for ``{glue:md}``), glued as is.
+        Usually a result's ``prose()``: formatted text, or any other object (e.g. ``Markdown``
+        for ``{glue:md}``). Text is glued as a ``str``: MyST-NB's ``{glue:text}`` reads back the
+        ``repr`` with ``ast.literal_eval``, which gives the text itself (an object whose ``repr``
+        were the bare text would be evaluated: ``37,493`` would print as ``(37, 493)`` and
+        ``1.00`` as ``1.0``).
     prefix : str, optional
         Put before every name (a chapter's results share one namespace per page).
 
@@ -217,6 +208,6 @@ def glue_numbers(numbers, prefix=""):
     for key, value in numbers.items():
         if not isinstance(key, str):
             raise TypeError(f"numbers must be keyed by str, but found {type(key).__name__} {key!r}")
-        glue(prefix + key, _Text(value) if isinstance(value, str) else value, display=False)
+        glue(prefix + key, value, display=False)
         names.append(prefix + key)
     return names

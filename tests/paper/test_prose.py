@@ -53,14 +53,21 @@ def test_bad_inputs(call, error, match):
         call()
 
 
-def test_glued_text_prints_without_quotes(monkeypatch):
+def test_glued_text_reads_back_as_printed(monkeypatch):
+    # MyST-NB's {glue:text} evaluates the glued text/plain form with ast.literal_eval: a str's repr
+    # reads back as the str, digits and separators kept
     import myst_nb
+    from IPython.core.formatters import PlainTextFormatter
+    from myst_nb.core.variables import format_plain_text
 
     from fdsc.paper import prose
 
     glued = {}
     monkeypatch.setattr(myst_nb, "glue", lambda name, value, display: glued.update({name: value}))
-    assert prose.glue_numbers({"a": "×1.00", "b": 2.5}, "p_") == ["p_a", "p_b"]
-    assert repr(glued["p_a"]) == "×1.00" and glued["p_b"] == 2.5
+    texts = {"a": count(37493), "b": num(1.0), "c": times(0.759), "d": span(0.436, 7.0), "e": pct(0.04)}
+    assert prose.glue_numbers(texts, "p_") == [f"p_{k}" for k in texts]
+    plain = PlainTextFormatter()
+    for key, text in texts.items():
+        assert format_plain_text(plain(glued[f"p_{key}"]), "") == text
     with pytest.raises(TypeError, match="numbers must be keyed by str"):
         prose.glue_numbers({1: "x"})
