@@ -8,6 +8,9 @@ import math
 
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.ticker import FixedLocator, NullLocator
+
+from .style import STYLES, band_color, style
 
 __all__ = [
     "plot_psi_weights",
@@ -29,12 +32,28 @@ __all__ = [
 ]
 
 
-CONTROLLER_STYLES = {"PassC-EF": ("tab:blue", "-"), "PassC-LF": ("tab:red", "-"),
-                     "PassC-HF": ("gold", "-"), "FDSC": ("tab:purple", "-"),
-                     "FDSC (our Q)": ("tab:green", "--"), "FDSC (candidate ẋ)": ("tab:brown", ":")}
+#: ``{controller: (colour, line style)}``, from the book's one style map (:mod:`fdsc.paper.style`).
+CONTROLLER_STYLES = {name: (color, ls) for name, (color, _, ls) in STYLES.items()}
+
+#: ``{band: colour}``: a band is drawn in the colour of the controller designed for it.
+BAND_COLORS = {band: band_color(band) for band in ("LF", "MF", "HF", "EF")}
 
 
-BAND_COLORS = {"LF": "tab:red", "MF": "tab:green", "HF": "tab:orange", "EF": "tab:blue"}
+def _symlog(ax, axis, linthresh, *, per_side=3):
+    """A symmetric-log axis with few ticks: 0 and at most ``per_side`` powers of ten on each side
+    (a default symlog axis labels every decade, dozens of labels over a wide range)."""
+    getattr(ax, f"set_{axis}scale")("symlog", linthresh=linthresh)
+    lo, hi = getattr(ax, f"get_{axis}lim")()
+    ticks = [0.0]
+    for sign, end in ((1, hi), (-1, -lo)):
+        if end <= linthresh:
+            continue
+        e0, e1 = math.ceil(math.log10(linthresh)), math.floor(math.log10(end))
+        step = max(1, math.ceil((e1 - e0 + 1) / per_side))
+        ticks += [sign * 10.0 ** e for e in range(e1, e0 - 1, -step)]
+    sub = getattr(ax, f"{axis}axis")
+    sub.set_major_locator(FixedLocator(sorted(ticks)))
+    sub.set_minor_locator(NullLocator())
 
 
 def _label(name, factor=1.0):
@@ -88,11 +107,11 @@ def plot_psi_weights(result, kind, ax=None, *, real_part=True):
     ax.set_xscale("symlog", linthresh=1e-1)
     ticks = [-1e3, -1e2, -1e1, -1, 0, 1, 1e1, 1e2, 1e3]
     ax.set_xticks(ticks, ["$-10^3$", "", "$-10$", "", "0", "", "$10$", "", "$10^3$"])
-    ax.set_yscale("symlog", linthresh=1.0)
+    _symlog(ax, "y", 1.0)
     ax.set_xlabel(r"$\omega$ [rad/s]")
     ax.set_ylabel("weight [(rad/s)$^2$]")
     ax.set_title(d.label)
-    ax.legend(fontsize=8, loc="best")
+    ax.legend(fontsize=7, loc="lower center")
     return ax
 
 
@@ -268,19 +287,22 @@ def plot_power_vs_alpha(data, ax: plt.Axes | None = None) -> plt.Axes:
     """
     ax = _axes(ax)
     for label, v in data.curves.items():
-        line, = ax.plot(data.alpha, v, label=label)
+        # the colour of the loop's gain (K_f1: PassC-LF, K_f3: PassC-HF), the line of the term
+        st = style(label.split(" loop")[0])
+        line, = ax.plot(data.alpha, v, color=st["color"],
+                        ls="-" if "Ω_3" in label else "--", label=label)
         a = data.crossing.get(label)
         if a is not None:
             ax.axvline(a, color=line.get_color(), ls=":", lw=1)
     ax.axhline(0, color="0.4", lw=0.8)
-    ax.set_yscale("symlog", linthresh=1.0)
+    _symlog(ax, "y", 1.0)
     ax.set_xlabel(r"dominance degree $\alpha(\Omega_3)$ of the disturbance [-]")
     ax.set_ylabel(r"average FD-EPF $P_a$ [-]")
-    ax.legend(fontsize=8)
+    _outside_legend(ax)
     return ax
 
 
-def plot_epf_series(data, ax: plt.Axes | None = None) -> plt.Axes:
+def plot_epf_series(data, ax: plt.Axes | None = None, *, legend: bool = True) -> plt.Axes:
     """Instantaneous FD-EPF (paper eq. (29)) of both law terms (min–max band per bin) and their
     running averages (paper eq. (28), thick).
 
@@ -290,6 +312,8 @@ def plot_epf_series(data, ax: plt.Axes | None = None) -> plt.Axes:
         Result of :func:`fdsc.paper.frequency_selective.epf_time_series`.
     ax : matplotlib Axes, optional
         Axes to draw on (default: a new figure).
+    legend : bool, optional
+        Draw a legend below the Axes (off the data); with several panels, one is enough.
 
     Returns
     -------
@@ -304,11 +328,12 @@ def plot_epf_series(data, ax: plt.Axes | None = None) -> plt.Axes:
             ax.plot(data.t, edge, color=color, lw=0.4, alpha=0.6, drawstyle="steps-post")
         ax.plot(data.t, data.P_a[kind], color=color, lw=2, label=f"running $P_a$, {kind} term")
     ax.axhline(0, color="0.4", lw=0.8)
-    ax.set_yscale("symlog", linthresh=1e-3)
+    _symlog(ax, "y", 1e-3)
     ax.set_xlabel("$t$ [s]")
     ax.set_ylabel("FD-EPF [-]")
-    ax.set_title(f"{data.gain} loop, {data.disturbance} disturbance")
-    ax.legend(fontsize=7, ncol=2)
+    ax.set_title(f"{data.gain} loop, {data.disturbance} disturbance", fontsize=9)
+    if legend:
+        ax.legend(fontsize=7, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.2))
     return ax
 
 
@@ -336,8 +361,8 @@ def plot_prop1_cases(rows, ax: plt.Axes | None = None) -> plt.Axes:
             ax.scatter([c.S_in for c in sel], [c.S_out for c in sel], marker=m, s=18,
                        facecolors="none", edgecolors=["tab:green" if c.passed else "tab:red"
                                                      for c in sel], label=kind)
-    ax.set_xscale("symlog", linthresh=1e-4)
-    ax.set_yscale("symlog", linthresh=1e-4)
+    _symlog(ax, "x", 1e-4)
+    _symlog(ax, "y", 1e-4)
     ax.axvline(0, color="0.4", lw=0.8)
     ax.axhline(0, color="0.4", lw=0.8)
     x0, x1 = ax.get_xlim()
@@ -345,7 +370,10 @@ def plot_prop1_cases(rows, ax: plt.Axes | None = None) -> plt.Axes:
     ax.fill_between([0, x1], y0, 0, color="tab:green", alpha=0.07, lw=0)
     ax.set_xlabel(r"$S(\Omega^{in}, Q^{in})$ (or its average) [-]")
     ax.set_ylabel(r"$S(\Omega^{out}, Q^{out})$ [-]")
-    ax.legend(fontsize=8, title="green: holds, red: fails", title_fontsize=8)
+    ax.set_xlim(x0, x1)
+    ax.set_ylim(y0, y1)
+    _outside_legend(ax)
+    ax.get_legend().set_title("green: holds, red: fails", prop={"size": 7})
     return ax
 
 
@@ -421,24 +449,33 @@ def plot_outputs(data, component: int, ax: plt.Axes | None = None, *, scale: dic
     """
     ax = _axes(ax)
     labels = ["$4q$ (pitch rate)", r"$2\delta_E$ (tail deflection)", r"$2\delta_{PTV}$ (nozzle deflection)"]
-    for name in data.z_lo:
+    n_fixed = 0
+    for k, name in enumerate(data.z_lo):
         if names is not None and name not in names:
             continue
-        color, ls = CONTROLLER_STYLES.get(name, ("k", "-"))
+        st = style(name, k)
+        color, ls = st["color"], st["linestyle"]
+        # the switched loops' spikes are drawn first and lighter, so that the fixed gains'
+        # smaller outputs stay visible on top of them; each later fixed gain is drawn below
+        # and wider than the one before, so that near-equal outputs both show
+        fixed = not name.startswith("FDSC")
+        z = 10 - n_fixed if fixed else 1
+        n_fixed += fixed
         f = (scale or {}).get(name, 1.0)
-        lab = name if f == 1.0 else f"{name} × {f:g}"
+        lab = _label(name) if f == 1.0 else f"{_label(name)} × {f:g}"
         if head:
             ax.plot(data.t_head, f * data.z_head[name][:, component], color=color, ls=ls,
-                    lw=0.9, label=lab)
+                    lw=0.9 if z == 1 else 0.8 + 0.8 * n_fixed, zorder=z, label=lab)
         else:
             lo, hi = f * data.z_lo[name][:, component], f * data.z_hi[name][:, component]
-            ax.fill_between(data.t, lo, hi, step="post", color=color, alpha=0.35, lw=0,
-                            label=f"{lab} (min–max per {data.every * data.dt * 1e3:g} ms)")
-            for edge in (lo, hi):  # edges keep a thin band visible where lo ≈ hi
-                ax.plot(data.t, edge, color=color, ls=ls, lw=0.6, drawstyle="steps-post")
+            ax.fill_between(data.t, lo, hi, step="post", color=color, alpha=0.2 if z == 1 else 0.35,
+                            lw=0, zorder=z)
+            for j, edge in enumerate((lo, hi)):  # edges keep a thin band visible where lo ≈ hi
+                ax.plot(data.t, edge, color=color, ls=ls, lw=0.6 if z == 1 else 0.6 + 0.8 * n_fixed,
+                        zorder=z, drawstyle="steps-post", label=None if j else lab)
     ax.set_xlabel("$t$ [s]")
-    ax.set_ylabel(f"$z_{component + 1}$ = {labels[component]} [-]")
-    ax.legend(fontsize=7, ncol=2)
+    ax.set_ylabel(f"$z_{component + 1}$ = {labels[component]} [-]", fontsize=9)
+    _outside_legend(ax)
     return ax
 
 
@@ -459,15 +496,17 @@ def plot_l2_curves(data, ax: plt.Axes | None = None) -> plt.Axes:
     """
     ax = _axes(ax)
     t = data.t_l2
-    for name in data.l2_lo:
-        color, ls = CONTROLLER_STYLES.get(name, ("k", "-"))
+    for k, name in enumerate(data.l2_lo):
+        st = style(name, k)
         lo, hi = data.l2_lo[name], data.l2_hi[name]
-        ax.fill_between(t, lo, hi, step="post", color=color, alpha=0.35, lw=0)
-        ax.plot(t, hi, color=color, ls=ls, lw=1.0, drawstyle="steps-post", label=name)
+        # translucent bands behind every line, so that no band covers another curve
+        ax.fill_between(t, lo, hi, step="post", color=st["color"], alpha=0.12, lw=0, zorder=1)
+        ax.plot(t, hi, color=st["color"], ls=st["linestyle"], lw=1.4, drawstyle="steps-post",
+                zorder=3, label=_label(name))
     ax.set_xlabel("$t$ [s]")
     ax.set_ylabel(r"$\sqrt{\int_0^t z^\top z / \int_0^t d^2}$ [-]")
     ax.set_yscale("log")
-    ax.legend(fontsize=8)
+    _outside_legend(ax)
     return ax
 
 
@@ -488,12 +527,16 @@ def plot_sigma_timeline(data, ax: plt.Axes | None = None) -> plt.Axes:
     """
     ax = _axes(ax, figsize=(10, 4))
     variants = list(data.variants.items())
+    as_controller = {"paper Q, measured ẋ": "FDSC", "paper Q, candidate ẋ": "FDSC (candidate ẋ)",
+                     "our Q, measured ẋ": "FDSC (our Q)"}
     for k, (label, v) in enumerate(variants):
         ax.fill_between(data.t, k, k + 0.8 * v.sigma, step="post", alpha=0.8,
-                        label=f"{label}: {v.switches} switches")
+                        color=style(as_controller.get(label, label), k)["color"],
+                        label=f"{_label(label)}: {v.switches} switches")
     for b in data.breaks[1:-1]:
         ax.axvline(b, color="k", ls=":", lw=1)
-    ax.set_yticks([k + 0.4 for k in range(len(variants))], [lab for lab, _ in variants], fontsize=8)
+    ax.set_yticks([k + 0.4 for k in range(len(variants))], [_label(lab) for lab, _ in variants],
+                  fontsize=8)
     ax.set_xlabel("$t$ [s]  (dotted: disturbance switches HF → LF → HF)")
     ax.set_title(f"share of each {data.bin * 1e3:g} ms bin on PassC-HF ($K_2$): full bar = all "
                  "of it, no bar = all on PassC-LF ($K_1$)", fontsize=9)
@@ -530,11 +573,11 @@ def plot_sweep(data, ax: plt.Axes | None = None, *, names: list | None = None, s
     matplotlib Axes
     """
     ax = _axes(ax)
-    for name in names or data.names:
-        color, ls = CONTROLLER_STYLES.get(name, ("k", "-"))
+    for k, name in enumerate(names or data.names):
+        st = style(name, k)
         f = (scale or {}).get(name, 1.0)
-        ax.plot(data.param, f * data.energy[name], color=color, ls=ls, marker="o", ms=3,
-                label=None if legend is None else _label(name, f))
+        ax.plot(data.param, f * data.energy[name], ms=4, mfc="none",
+                label=None if legend is None else _label(name, f), **st)
     line_styles = (("0.2", "--"), ("tab:olive", "-."), ("tab:cyan", ":"))
     for (label, x), (color, ls) in zip((crossover or {}).items(), line_styles, strict=False):
         if x is not None:
@@ -572,16 +615,15 @@ def plot_p1(data, ax: plt.Axes | None = None, *, names: tuple | None = None) -> 
     ax = _axes(ax)
     rows = data.rows[1:]  # the ρ_p sweep (the first row is the LF disturbance)
     rho = np.array([r.rho_p for r in rows])
-    for name in names or tuple(rows[0].tail_ratio):
-        color, ls = CONTROLLER_STYLES.get(name, ("k", "-"))
-        ax.plot(rho, np.sqrt([r.tail_ratio[name] for r in rows]), color=color, ls=ls, marker="o",
-                ms=3, label=_label(name))
+    for k, name in enumerate(names or tuple(rows[0].tail_ratio)):
+        ax.plot(rho, np.sqrt([r.tail_ratio[name] for r in rows]), ms=4, mfc="none",
+                label=_label(name), **style(name, k))
     ax.axhline(data.gamma_in, color="k", ls="--", lw=1,
                label=rf"$\gamma(\Omega_{{in}}, K_{{in}})$ = {data.gamma_in:.4f} "
                      r"(band peak, printed $K_{f_3}$)")
     ax.axhline(data.gamma_in_printed, color="k", ls=":", lw=1,
                label=f"bound printed beside $K_{{f_3}}$: {data.gamma_in_printed:g}")
-    ax.axhline(np.sqrt(rows[0].tail_ratio["PassC-HF"]), color="gold", ls="-.", lw=1,
+    ax.axhline(np.sqrt(rows[0].tail_ratio["PassC-HF"]), color=style("PassC-HF")["color"], ls="-.", lw=1,
                label=r"PassC-HF under the HF tones alone ($\rho_p = 0$)")
     ax.set_xlabel(r"$\rho_p$ [-]  (in-band dominance $\alpha(\Omega_3) = 1/(1 + \rho_p^2)$)")
     ax.set_ylabel(r"$\sqrt{\int z^\top z / \int d^2}$ over $[250, 500]$ [-]")
@@ -606,11 +648,11 @@ def plot_p2(data, ax: plt.Axes | None = None) -> plt.Axes:
     """
     ax = _axes(ax)
     w = np.array(data.windows)
-    for name in data.worst[data.windows[0]]:
-        color, ls = CONTROLLER_STYLES.get(name, ("k", "-"))
+    for k, name in enumerate(data.worst[data.windows[0]]):
+        st = style(name, k)
         # markers only: three window lengths, nothing is known between them
-        ax.plot(w, [data.worst[x][name] for x in data.windows], color=color, ls="none", marker="o", ms=5,
-                label=_label(name), markerfacecolor="none" if ls != "-" else color)
+        ax.plot(w, [data.worst[x][name] for x in data.windows], color=st["color"], ls="none",
+                marker=st["marker"], ms=6, label=_label(name))
     ax.axhline(data.gamma_tol, color="k", ls="--", lw=1,
                label=rf"$\gamma_{{tol}}$ = {data.gamma_tol:g} (ours)")
     ax.axhline(data.gamma_out_in, color="k", ls=":", lw=1,
