@@ -21,6 +21,7 @@ from .data import (
     piecewise_disturbance,
 )
 from .names import BAND_ORDER
+from .prose import count, num
 from .results import RecordPart, entry
 
 __all__ = [
@@ -47,6 +48,12 @@ __all__ = [
     "PaleyWienerTable",
     "paley_wiener_table",
 ]
+
+
+def _length(x):
+    """A length or duration as the prose prints it: whole numbers without decimals."""
+    x = float(x)
+    return count(int(x)) if x.is_integer() else num(x)
 
 
 #: The ranges of Lemma 1 that carry a Ψ (the entire range Ω_e has Ψ = 0).
@@ -97,9 +104,22 @@ class PsiTable:
         list of dict
             For :func:`fdsc.paper.report.html_table`.
         """
-        return [{"band": r.kind, "range": r.label,
-                 "Psi": np.array2string(r.psi, precision=3, suppress_small=True),
-                 "complex": r.is_complex} for r in self.ranges]
+        return [{"band": r.kind, "range": r.label, "Psi": _matrix_text(r.psi),
+                 "complex": "yes" if r.is_complex else "no"} for r in self.ranges]
+
+
+def _entry_text(z):
+    z = complex(z)
+    re_, im = z.real, z.imag
+    if im == 0:
+        return num(re_) if not float(re_).is_integer() else count(int(re_))
+    mag = num(abs(im)) if not float(im).is_integer() else count(int(abs(im)))
+    return ("−" if im < 0 else "") + f"{mag}j" if re_ == 0 else f"{num(re_)} {'−' if im < 0 else '+'} {mag}j"
+
+
+def _matrix_text(m):
+    """A small matrix as the prose prints it, rows separated by a semicolon: ``[−1, 0; 0, 1]``."""
+    return "[" + "; ".join(", ".join(_entry_text(z) for z in row) for row in np.asarray(m)) + "]"
 
 
 def psi_table() -> PsiTable:
@@ -210,6 +230,17 @@ class PsiWeights:
         """ϖ_1ϖ_2 of the MF range in (rad/s)²."""
         return self.bands["MF"].lower * self.bands["MF"].upper
 
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, formatted (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: ``n_grid``, ``sign_violations``, ``mf_real_max``, ``mf_w1w2``.
+        """
+        return {"n_grid": count(self.omega.size), "sign_violations": count(self.n_sign_violations),
+                "mf_real_max": num(self.mf_real_max, 4), "mf_w1w2": num(float(self.mf_product), 3)}
+
     def to_record(self) -> RecordPart:
         """Record entry ``psi_weight_sign``: the sign rule of the weight that the proof of
         Proposition 1 rests on, and the MF weight seen by real signals.
@@ -301,6 +332,18 @@ class DominanceVsRho:
     def max_fft_error(self) -> float:
         """Largest ``|fft − exact|`` over ρ_p."""
         return float(np.max(np.abs(self.fft - self.exact)))
+
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, formatted (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: ``alpha_fft_err`` (largest FFT error), ``alpha_at_half`` (α(Ω_3)
+            at the largest ρ_p), ``horizon``.
+        """
+        return {"alpha_fft_err": num(self.max_fft_error, 2), "alpha_at_half": num(float(self.exact[-1])),
+                "horizon": _length(self.horizon)}
 
     def to_record(self) -> RecordPart:
         """Record entry ``alpha_mixed`` (new): α(Ω_3) over the ρ_p range of paper Fig. 7.
@@ -439,6 +482,29 @@ class PiecewiseDominance:
     def resolution(self) -> float:
         """Frequency resolution ``2π / window_length`` of the windows in rad/s."""
         return 2 * np.pi / self.window_length
+
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, formatted (:mod:`fdsc.paper.prose`).
+
+        The smallest in-LF share is printed with as many digits as it takes to tell it from 1
+        (a share never exceeds 1, and rounded to three decimals it would print as 1.000).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: ``alpha_lf_in_lf``, ``alpha_lf_in_hf``, ``stft_window``,
+            ``stft_resolution``.
+
+        Examples
+        --------
+        >>> localized_dominance_piecewise().prose()["alpha_lf_in_lf"]
+        '0.9999983'
+        """
+        lf = self.alpha_lf_in_lf
+        gap = 1.0 - lf
+        digits = 3 if not gap > 0 else max(3, 1 - math.floor(math.log10(gap)))
+        return {"alpha_lf_in_lf": num(lf, digits), "alpha_lf_in_hf": num(self.alpha_lf_in_hf, 2),
+                "stft_window": _length(self.window_length), "stft_resolution": num(self.resolution, 2)}
 
     def to_record(self) -> RecordPart:
         """Record entry ``alpha_localized`` (new): α(Ω_1, T_l) inside the segments.
@@ -636,6 +702,25 @@ class Prop1WeightCheck:
     def max_rel_diff_tau(self) -> float:
         """Largest relative difference of τ's diagonal over the three ranges."""
         return max(f.rel_diff_tau for f in self.bands.values())
+
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, formatted (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: ``n_grid``; per range ``{kind}_wrong``, ``{kind}_claim_fails``,
+            ``{kind}_in_band``, ``{kind}_out_band``; ``max_diff``, ``corrected_rel``,
+            ``tau_rel``, ``mf_negative``.
+        """
+        out = {"n_grid": count(self.omega.size)}
+        for kind, f in self.bands.items():
+            out.update({f"{kind}_wrong": count(f.n_wrong_sign), f"{kind}_claim_fails": count(f.n_claim_fails),
+                        f"{kind}_in_band": count(f.n_in_band), f"{kind}_out_band": count(f.n_out_of_band)})
+        return {**out, "max_diff": num(self.max_printed_diff),
+                "corrected_rel": num(self.max_rel_diff_corrected, 2),
+                "tau_rel": num(self.max_rel_diff_tau, 2),
+                "mf_negative": count(self.bands["MF"].n_in_band_negative)}
 
     def to_record(self) -> RecordPart:
         """Record entry ``prop1_factorizations``: the printed products against the weight.
@@ -958,6 +1043,19 @@ class PaleyWienerTable:
         float
         """
         return min(c.fraction_out for c in self.cases if c.kind == kind)
+
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, formatted (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: ``T_list`` (the record lengths), ``lf_min``, ``hf_min`` (the
+            smallest out-of-band shares), ``n_positive``, ``n_rows``.
+        """
+        return {"T_list": ", ".join(_length(T) for T in self.horizons),
+                "lf_min": num(self.min_fraction("LF")), "hf_min": num(self.min_fraction("HF")),
+                "n_positive": count(int(self.n_positive)), "n_rows": count(len(self.cases))}
 
     def to_record(self) -> RecordPart:
         """Record entry ``paley_wiener_share`` (new): Definition 1 on finite records.

@@ -134,7 +134,7 @@ def test_psi_table_holds_the_three_ranges():
     assert [r.kind for r in t.ranges] == ["LF", "MF", "HF"]
     # Ψ_MF = [[−1, jϖ_c], [−jϖ_c, −ϖ_1ϖ_2]], ϖ_c = 5.5 for the paper's MF band [1, 10]
     assert_allclose(t.ranges[1].psi, [[-1, 5.5j], [-5.5j, -10]], rtol=0, atol=1e-15)
-    assert [r["complex"] for r in t.rows()] == [False, True, False]
+    assert [r["complex"] for r in t.rows()] == ["no", "yes", "no"]
 
 
 def test_sign_violations_against_explicit_masks():
