@@ -22,6 +22,7 @@ from .data import (
     paper_gains,
     paper_modes,
 )
+from .prose import count, num
 from .results import RecordPart, entry
 from .verdict import worst_verdict
 
@@ -175,6 +176,24 @@ class Prop1Cases:
         Prop1Summary
         """
         return prop1_summary(self)
+
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, formatted (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: ``total``, ``passed``, ``failed``, per kind ``{key}_passed`` and
+            ``{key}_failed`` (key ``real``, ``mf``, ``win``, ``q1``), ``win_max_fail_periods``.
+        """
+        sm = self.summary()
+        keys = {"infinite, real Ψ": "real", "infinite, MF": "mf", "window from rest": "win",
+                "infinite, Q weighting one state": "q1"}
+        out = {"total": count(len(self)), "passed": count(sm.passed), "failed": count(sm.failed)}
+        for kind, (passed, failed) in sm.per_kind.items():
+            out[f"{keys[kind]}_passed"] = count(passed)
+            out[f"{keys[kind]}_failed"] = count(failed)
+        return {**out, "win_max_fail_periods": num(sm.longest_failing_window)}
 
     def to_record(self) -> RecordPart:
         """Record entries ``prop1_checks`` (the counts) and ``prop1_short_windows`` (new).
@@ -373,6 +392,21 @@ class PowerVsAlpha:
                     raise ValueError(f"{name}[{label!r}] must have shape {self.alpha.shape} (one "
                                      f"value per alpha), but found {np.shape(v)}")
 
+    def prose(self) -> dict:
+        """The sign changes the chapter quotes, formatted (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{"cross_<gain>_<lf|hf>": text}`` for each loop and term (``n/a``: no sign change);
+            five digits, enough to tell the K_f3 loop's crossings from 1.
+        """
+        out = {}
+        for label, a in self.crossing.items():
+            key = label.split(" loop")[0] + ("_hf" if "Ω_3" in label else "_lf")
+            out[f"cross_{key}"] = num(float("nan") if a is None else a, 5 if a and a > 0.99 else 3)
+        return out
+
     def to_record(self) -> RecordPart:
         """Record entry ``remark1_crossings`` (new): the dominance degree where each term of the
         law changes sign on each loop.
@@ -557,6 +591,24 @@ class EPFAircraft:
                 return s
         raise KeyError(f"no series for gain {gain!r} and disturbance {disturbance!r}")
 
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, formatted (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: ``epf_horizon``, ``epf_n_selective``, ``epf_n_runs`` and the
+            running averages at the horizon ``pa_<gain>_<disturbance>_<term>``.
+        """
+        out = {"epf_horizon": num(float(self.horizon)) if not float(self.horizon).is_integer()
+               else count(int(self.horizon)),
+               "epf_n_selective": count(sum(s.selective for s in self.series)),
+               "epf_n_runs": count(len(self.series))}
+        for s in self.series:
+            for kind, value in s.final_average.items():
+                out[f"pa_{s.gain}_{s.disturbance}_{kind}"] = num(value)
+        return out
+
     def to_record(self) -> RecordPart:
         """Record entry ``epf_aircraft_signs`` (new): the running averages at the horizon and
         whether each run is frequency-selective.
@@ -692,8 +744,24 @@ class Table1Trends:
         list of dict
         """
         return [{"quantity": c.quantity, "claimed": c.claimed, "observed": c.observed,
-                 "values": ", ".join(f"{v:.4g}" for v in c.values), "verdict": c.verdict}
+                 "values": ", ".join(num(float(v), 4) for v in c.values), "verdict": c.verdict}
                 for c in self.checks]
+
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, formatted (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: ``t1_alphas``, ``t1_horizon``, ``t1_match``, ``t1_rows``,
+            ``t1_beta_min``, ``t1_beta_max``.
+        """
+        lo, hi = self.beta_range
+        horizon = float(self.horizon)
+        return {"t1_alphas": ", ".join(num(float(a), 2) for a in self.alpha),
+                "t1_horizon": count(int(horizon)) if horizon.is_integer() else num(horizon),
+                "t1_match": count(self.n_match), "t1_rows": count(len(self.checks)),
+                "t1_beta_min": num(lo), "t1_beta_max": num(hi)}
 
     def to_record(self) -> RecordPart:
         """Record entry ``table1_checks``.
