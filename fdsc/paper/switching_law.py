@@ -14,6 +14,7 @@ from .data import (
     paper_modes,
     piecewise_disturbance,
 )
+from .prose import count, num, pct
 from .results import RecordPart, entry
 
 __all__ = [
@@ -97,7 +98,8 @@ class LawVariant:
     label : str
         The variant (Q's and reading of ẋ).
     law : {"previous", "candidate"}
-        How ẋ enters the law (measured, or each candidate's own).
+        How ẋ enters the law: ``"previous"`` is the measured ẋ (the mode active just before),
+        ``"candidate"`` the candidate ẋ (each mode's own).
     sigma : (k,) ndarray
         Share of each bin spent in the HF mode (so chattering is not aliased).
     switches : int
@@ -164,6 +166,36 @@ class SwitchingStatistics:
                  "one-sample dwells": v.single_sample_dwell, "energy ∫zᵀz": v.energy}
                 for label, v in self.variants.items()]
 
+    #: Short keys of the default variants in :meth:`prose`.
+    KEYS = {"paper Q, measured ẋ": "pm", "paper Q, candidate ẋ": "pc", "our Q, measured ẋ": "om"}
+
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, formatted (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: ``sw_T``, ``sw_rho_t``, ``sw_horizon``, ``bin_ms`` and, per
+            variant (key ``pm``, ``pc``, ``om`` for the default ones, else its label),
+            ``sw_<key>`` (switches), ``lfshare_<key>`` (HF share in the LF segment),
+            ``dwell1_<key>`` (share of one-sample dwells) and, with the measured ẋ,
+            ``region_<key>`` and ``region_sw_<key>`` (the chattering region's shares of the
+            samples and of the switches).
+        """
+        def whole(x):
+            return count(int(x)) if float(x).is_integer() else num(float(x))
+
+        out = {"sw_T": whole(self.T), "sw_rho_t": num(self.rho_t, 1), "sw_horizon": whole(self.breaks[-1]),
+               "bin_ms": whole(round(self.bin * 1e3, 9))}
+        for label, v in self.variants.items():
+            key = self.KEYS.get(label, label)
+            out.update({f"sw_{key}": count(v.switches), f"lfshare_{key}": pct(v.share_hf[1], 1),
+                        f"dwell1_{key}": pct(v.single_sample_dwell)})
+            if v.conflict is not None:
+                out[f"region_{key}"] = pct(v.conflict.in_region, 2)
+                out[f"region_sw_{key}"] = pct(v.conflict.switches_in_region)
+        return out
+
     def to_record(self) -> RecordPart:
         """Record entry ``law_chattering`` (new): switches, shares, dwells and the conflict
         region of every variant.
@@ -184,8 +216,11 @@ class SwitchingStatistics:
             None, rec, "new",
             f"piecewise disturbance of paper eq. (58) with T = {self.T:g} s, rho_t = {self.rho_t:g}, "
             f"rho_p* = {self.rho_p_star:g}; share_hf per segment (HF, LF, HF); a large share of "
-            "one-sample dwells is chattering at the sampling rate, which Theorem 1 excludes by "
-            "assumption; the conflict region is where every mode prefers another.",
+            "one-sample dwells is chattering at the sampling rate. The conflict (chattering) region "
+            "is the set of states where each mode's score prefers the other once it is active; on "
+            "its border a continuous-time law would slide, which the sampled law realizes as "
+            "chattering. Theorem 1 assumes no sliding motion, so runs that chatter are outside its "
+            "assumptions.",
             T=self.T, rho_t=self.rho_t, rho_p_star=self.rho_p_star),))
 
 
