@@ -22,6 +22,7 @@ from .data import (
     paper_modes,
     run_controller,
 )
+from .prose import count, num, pct
 from .results import RecordPart, entry, pick
 
 __all__ = [
@@ -43,11 +44,41 @@ __all__ = [
     "AsymptoticCheck",
     "Statement3Check",
     "statement3",
+    "matrix_text",
 ]
 
 
 #: How the two sets of Q's are labelled in the results.
 _Q_LABELS = ("paper", "ours")
+
+
+def _whole(x):
+    """A count or a length as the prose prints it: whole numbers without decimals."""
+    x = float(x)
+    return count(int(x)) if x.is_integer() else num(x)
+
+
+def matrix_text(m, digits=4):
+    """A small matrix as the book prints it: rows separated by semicolons, entries by
+    :func:`fdsc.paper.prose.num` (no raw NumPy array in the book).
+
+    Parameters
+    ----------
+    m : (n, k) array_like
+    digits : int, optional
+        Significant digits of each entry.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> matrix_text([[1.0, -2.5e-11], [-2.5e-11, 0.5]])
+    '[1.000, −2.500 × 10⁻¹¹; −2.500 × 10⁻¹¹, 0.5000]'
+    """
+    return "[" + "; ".join(", ".join(num(float(v), digits) for v in row)
+                           for row in np.atleast_2d(np.asarray(m, dtype=float))) + "]"
 
 
 @dataclass(frozen=True)
@@ -125,6 +156,37 @@ class Theorem1Table:
         """
         keys = ("source", "gamma_tol", "gamma_1", "gamma_2", "Q_1", "Q_2", "max_eig")
         return [{k: getattr(r, k) for k in keys} for r in self.certified]
+
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, formatted (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: ``paper_g1``, ``paper_g2`` (the γ's the printed Q's certify),
+            ``hinf_mode1``, ``hinf_mode2`` (H∞ norms of the modes), ``hf_mode2`` (PassC-HF's
+            in-band peak), ``gamma_tol`` (the default γ_tol of our Q's), ``gamma_tols`` (those
+            tried).
+        """
+        return {"paper_g1": num(float(self.paper.gamma_1), 4), "paper_g2": num(float(self.paper.gamma_2), 4),
+                "hinf_mode1": num(float(self.hinf[0])), "hinf_mode2": num(float(self.hinf[1]), 4),
+                "hf_mode2": num(float(self.band_peaks[1]), 5), "gamma_tol": _whole(DEFAULT_GAMMA_TOL),
+                "gamma_tols": ", ".join(_whole(r.gamma_tol) for r in self.designs)}
+
+    def table_rows(self) -> list:
+        """:meth:`rows` as the book prints them (γ's, Q's and eigenvalues formatted).
+
+        Returns
+        -------
+        list of dict
+        """
+        def tol(x):
+            return "—" if x is None or not np.isfinite(x) else _whole(x)
+
+        return [{**r, "gamma_tol": tol(r["gamma_tol"]),
+                 "gamma_1": num(float(r["gamma_1"]), 5), "gamma_2": num(float(r["gamma_2"]), 5),
+                 "Q_1": matrix_text(r["Q_1"]), "Q_2": matrix_text(r["Q_2"]),
+                 "max_eig": num(float(r["max_eig"]), 2)} for r in self.rows()]
 
     def to_record(self) -> RecordPart:
         """Record entries ``thm1_gammas`` and ``thm1_mode_reference`` (new).
@@ -430,6 +492,26 @@ class Statement1Check:
             raise ValueError("jumps must be measured on the runs of ours (same initial states, "
                              "same final states)")
 
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, formatted (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: ``stab_n``, ``stab_T``; for ``paper`` and ``ours``
+            ``stab_<q>_final`` (largest ‖x(T)‖/‖x(0)‖), ``stab_<q>_growth``,
+            ``stab_<q>_switches`` (median); ``jump_max``, ``jump_n``, ``jump_runs``, ``jump_up``.
+        """
+        out = {"stab_n": count(self.paper.n_runs), "stab_T": _whole(self.paper.horizon)}
+        for key, runs in (("paper", self.paper), ("ours", self.ours)):
+            sm = runs.summary()
+            out.update({f"stab_{key}_final": num(sm["max_final_ratio"], 2),
+                        f"stab_{key}_growth": num(sm["max_growth"], 4),
+                        f"stab_{key}_switches": _whole(sm["median_switches"])})
+        j = self.jumps
+        return {**out, "jump_max": num(j.max_ratio), "jump_n": count(j.n_switches),
+                "jump_runs": count(j.n_runs), "jump_up": pct(j.frac_up)}
+
     def to_record(self) -> RecordPart:
         """Record entries ``thm1_statement1`` and ``thm1_lyapunov_jumps`` (both new).
 
@@ -627,6 +709,19 @@ class Statement2Check:
         return [{"disturbance": c.disturbance, "Q's": c.q_label, "max ratio": c.max_ratio,
                  "mean ratio": c.mean_ratio, "bound max γ²": c.bound} for c in self.cases]
 
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, formatted (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: ``s2_horizon``, ``s2_window``, ``bound_paper``, ``bound_ours``,
+            ``wr_max_lf_paper``.
+        """
+        return {"s2_horizon": _whole(self.horizon), "s2_window": _whole(self.window),
+                "bound_paper": num(self.bound("paper")), "bound_ours": num(self.bound("ours"), 4),
+                "wr_max_lf_paper": num(self.case("LF", "paper").max_ratio, 4)}
+
     def to_record(self) -> RecordPart:
         """Record entry ``thm1_statement2`` (new).
 
@@ -766,6 +861,20 @@ class Statement3Check:
         """
         return [{"disturbance": c.disturbance, "Q's": c.q_label, self.ratio_label: c.ratio,
                  "β₁": c.beta[0], "β₂": c.beta[1], "Σ βᵢγᵢ²": c.bound} for c in self.cases]
+
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, formatted (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: ``s3_horizon``, ``s3_ours_hf_ratio``, ``s3_ours_hf_bound``,
+            ``s3_n_below``, ``s3_n``.
+        """
+        hf = self.case("HF", "ours")
+        return {"s3_horizon": _whole(self.horizon), "s3_ours_hf_ratio": num(hf.ratio, 4),
+                "s3_ours_hf_bound": num(hf.bound, 4), "s3_n_below": count(self.n_below),
+                "s3_n": count(len(self.cases))}
 
     def to_record(self) -> RecordPart:
         """Record entry ``thm1_statement3`` (new).
