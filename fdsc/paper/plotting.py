@@ -421,7 +421,8 @@ def plot_fdsc_diagram(ax: plt.Axes | None = None) -> plt.Axes:
 
 
 def plot_outputs(data, component: int, ax: plt.Axes | None = None, *, scale: dict | None = None,
-                 names: list | None = None, head: bool = False) -> plt.Axes:
+                 names: list | None = None, head: bool = False,
+                 linthresh: float | None = None) -> plt.Axes:
     """One output of z over time for each controller (paper Figs. 4 and 5).
 
     The whole run is drawn as the min/max envelope of each bin of the decimated record (a band
@@ -442,6 +443,9 @@ def plot_outputs(data, component: int, ax: plt.Axes | None = None, *, scale: dic
         Controllers to draw (default all).
     head : bool, optional
         Draw the full-resolution start of the run (``data.t_head``) instead of the envelope.
+    linthresh : float, optional
+        A symmetric-log vertical axis, linear within ±``linthresh``, with few ticks (default:
+        linear).
 
     Returns
     -------
@@ -475,6 +479,8 @@ def plot_outputs(data, component: int, ax: plt.Axes | None = None, *, scale: dic
                         zorder=z, drawstyle="steps-post", label=None if j else lab)
     ax.set_xlabel("$t$ [s]")
     ax.set_ylabel(f"$z_{component + 1}$ = {labels[component]} [-]", fontsize=9)
+    if linthresh is not None:
+        _symlog(ax, "y", linthresh)
     _outside_legend(ax)
     return ax
 

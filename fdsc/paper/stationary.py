@@ -20,6 +20,7 @@ from .data import (
     run_controller,
 )
 from .names import CONTROLLER_GAINS, CONTROLLERS, FIGURE_IDS
+from .prose import count, num, pct, times
 from .results import RecordPart, entry
 from .verdict import worst_verdict
 
@@ -43,6 +44,12 @@ __all__ = [
 
 #: The name of FDSC with our Q's beside the paper's four controllers.
 OUR_Q_NAME = "FDSC (our Q)"
+
+
+def _whole(x):
+    """A count or a length as the prose prints it: whole numbers without decimals."""
+    x = float(x)
+    return count(int(x)) if x.is_integer() else num(x)
 
 
 def _l2_norm_curve(sim):
@@ -126,6 +133,29 @@ class StationaryRuns:
     def l2_final(self) -> dict:
         """``{controller: running L2-induced norm at the horizon}``."""
         return {k: float(v[-1]) for k, v in self.l2.items()}
+
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, formatted (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: ``horizon``, ``dt_ms``, ``bin_ms``, ``head_s``; per controller
+            ``E_<name>`` (∫zᵀz) and ``l2_ss_<name>`` (steady-state L2-induced norm, fixed gains);
+            per switched controller ``sw_<name>`` (switches), ``share_hf_<name>`` (time on the HF
+            gain) and ``peak_dE_<name>`` (peak of 2δ_E); ``sw_paper``, ``sw_ours``,
+            ``share_paper`` and ``fdsc_peak_dE`` for FDSC with the paper's and our Q's.
+        """
+        out = {"horizon": _whole(self.horizon), "dt_ms": _whole(round(self.dt * 1e3, 9)),
+               "bin_ms": _whole(round(self.every * self.dt * 1e3, 9)),
+               "head_s": _whole(round(float(self.t_head[-1]), 9))}
+        out.update({f"E_{name}": num(float(e), 4) for name, e in self.energy.items()})
+        out.update({f"l2_ss_{name}": num(float(v), 4) for name, v in self.l2_steady.items()})
+        for name, n in self.switches.items():
+            out.update({f"sw_{name}": count(int(n)), f"share_hf_{name}": pct(float(self.share[name][1]), 1),
+                        f"peak_dE_{name}": num(float(self.peak[name][1]))})
+        return {**out, "sw_paper": out["sw_FDSC"], "sw_ours": out[f"sw_{OUR_Q_NAME}"],
+                "share_paper": out["share_hf_FDSC"], "fdsc_peak_dE": out["peak_dE_FDSC"]}
 
     def to_record(self) -> RecordPart:
         """Record figures ``lf_outputs`` (LF) or ``hf_outputs`` and ``hf_l2`` (HF).
@@ -309,6 +339,26 @@ class LFOutputClaims:
         """The claims, in the paper's order."""
         return (self.claim_smallest, self.claim_thousand, self.claim_similar)
 
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, formatted (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: energy factors ``ratio_fdsc_lf``, ``ratio_hf_fdsc``,
+            ``ratio_ours_lf``; peak factors ``peak_ratio_min``, ``peak_ratio_max`` (PassC-HF
+            against the better of PassC-EF and PassC-LF) and ``fdsc_peak_vs_hf_max``; the
+            outcomes ``smallest_verdict``, ``thousand_verdict``, ``similar_verdict``.
+        """
+        return {"ratio_fdsc_lf": times(self.ratio_fdsc_lf), "ratio_hf_fdsc": times(self.ratio_hf_fdsc),
+                "ratio_ours_lf": times(self.ratio_ours_lf),
+                "peak_ratio_min": times(float(self.peak_ratio_hf.min())),
+                "peak_ratio_max": times(float(self.peak_ratio_hf.max())),
+                "fdsc_peak_vs_hf_max": times(float(self.peak_ratio_fdsc_hf.max()), 2),
+                "smallest_verdict": self.claim_smallest.outcome,
+                "thousand_verdict": self.claim_thousand.outcome,
+                "similar_verdict": self.claim_similar.outcome}
+
     def to_record(self) -> RecordPart:
         """Record entry ``lf_outputs_claims``.
 
@@ -411,6 +461,21 @@ class HFOutputClaims:
         """Largest peak of |q| over the four controllers."""
         return max(self.q_peak.values())
 
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, formatted (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: ``ratio_fdsc_hf`` (energy factor), ``q_range_min``,
+            ``q_range_max`` (peaks of |q|), ``q_ratio`` (largest over smallest), ``q_verdict``,
+            ``coincident_verdict``.
+        """
+        return {"ratio_fdsc_hf": times(self.ratio_fdsc_hf), "q_range_min": num(self.q_min),
+                "q_range_max": num(self.q_max), "q_ratio": times(self.q_ratio, 2),
+                "q_verdict": self.claim_range.outcome,
+                "coincident_verdict": self.claim_coincident.outcome}
+
     def to_record(self) -> RecordPart:
         """Record entry ``hf_outputs_claims``.
 
@@ -496,6 +561,22 @@ class L2Claims:
     def time_constant_hf(self) -> float:
         """Time constant ``−1/slow_pole_hf`` of the PassC-HF loop in s."""
         return -1.0 / self.slow_pole_hf
+
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, formatted (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: the norm of each controller at the horizon (keyed by its name),
+            ``ratio_min``, ``ratio_max``, ``twice_verdict``, ``slow_pole_hf``,
+            ``time_constant_hf`` and ``fdsc_beats_hf`` (in words).
+        """
+        return {**{name: num(float(v), 4) for name, v in self.final.items()},
+                "ratio_min": num(float(self.ratios.min())), "ratio_max": num(float(self.ratios.max())),
+                "twice_verdict": self.claim_twice.outcome, "slow_pole_hf": num(self.slow_pole_hf),
+                "time_constant_hf": _whole(round(self.time_constant_hf)),
+                "fdsc_beats_hf": self.fdsc_beats_hf}
 
     def to_record(self) -> RecordPart:
         """Record entry ``hf_l2_claims``.
@@ -630,6 +711,31 @@ class StepHalving:
                  "energy_dt2": r.energy_dt2, "rel_change": r.rel_change,
                  "switches_dt": r.switches_dt, "switches_dt2": r.switches_dt2}
                 for r in self.controllers]
+
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, formatted (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: ``horizon``, ``max`` (largest relative change), and FDSC's
+            ``sw1`` and ``sw2`` (switches with dt and dt/2) and ``fdsc`` (relative change).
+        """
+        r = self.row("FDSC")
+        return {"horizon": _whole(self.horizon), "max": num(self.max_rel_change, 2),
+                "sw1": count(int(r.switches_dt)), "sw2": count(int(r.switches_dt2)),
+                "fdsc": num(r.rel_change, 2)}
+
+    def table_rows(self) -> list:
+        """:meth:`rows` as the book prints them (energies to 7 digits, changes to 2).
+
+        Returns
+        -------
+        list of dict
+        """
+        return [{**r, "energy_dt": num(r["energy_dt"], 7), "energy_dt2": num(r["energy_dt2"], 7),
+                 "rel_change": num(r["rel_change"], 2), "switches_dt": count(int(r["switches_dt"])),
+                 "switches_dt2": count(int(r["switches_dt2"]))} for r in self.rows()]
 
     def to_record(self) -> RecordPart:
         """Record entry ``step_halving_lf`` or ``step_halving_hf`` (new).
