@@ -166,3 +166,18 @@ def test_scaled_crossing_solves_the_drawn_curves(mixed):
     assert scaled_crossing(mixed, 1e-9) is None          # scaled far down: never crosses
     with pytest.raises(ValueError, match="runs must be a mixed sweep"):
         scaled_crossing(piecewise_sweep(2, dt=DT), 1 / 5000)
+
+
+def test_comparator_check_prose_counts_and_factors():
+    # made-up energies: FDSC better than the best fixed controller at one point of three
+    from fdsc.paper.nonstationary import ComparatorCheck
+
+    check = ComparatorCheck("mixed", np.array([0.0, 0.1, 0.2]), ("open loop", "open loop", "PassC-LF"),
+                            np.array([1.0, 2.0, 4.0]), np.array([0.5, 3.0, 8.0]),
+                            np.array([1.0, 2.0, 9.0]))
+    text = check.prose()
+    assert check.n_fdsc_better == 1
+    assert text["n_better"] == "1" and text["n"] == "3"
+    assert text["winners"] == "open loop at 2, PassC-LF at 1"
+    assert text["ratio"] == "×0.500 to ×2.00"
+    assert text["open_loop_better"] == "1"
