@@ -48,7 +48,10 @@ def _symlog(ax, axis, linthresh, *, per_side=3):
     for sign, end in ((1, hi), (-1, -lo)):
         if end <= linthresh:
             continue
-        e0, e1 = math.ceil(math.log10(linthresh)), math.floor(math.log10(end))
+        # the first labelled power lies a decade above the linear range, so that its label and
+        # 0's do not overlap (unless the axis ends before it)
+        e1 = math.floor(math.log10(end))
+        e0 = min(math.ceil(math.log10(linthresh)) + 1, e1)
         step = max(1, math.ceil((e1 - e0 + 1) / per_side))
         ticks += [sign * 10.0 ** e for e in range(e1, e0 - 1, -step)]
     sub = getattr(ax, f"{axis}axis")
