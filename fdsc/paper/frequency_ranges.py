@@ -262,7 +262,7 @@ class PsiWeights:
             f"{self.n_sign_violations} sign violations for LF and HF over all w and for MF over "
             f"w >= 0 (on the mirror interval [-w_2, -w_1] the MF weight is negative, see "
             f"prop1_factorizations). For real signals only Re Psi counts, and the MF weight of Re "
-            f"Psi is -(w^2 + w_1 w_2), at most {self.mf_real_max:.4g} on the grid: the MF FD-EEF "
+            f"Psi is -(w^2 + w_1 w_2), at most {num(self.mf_real_max, 4)} on the grid: the MF FD-EEF "
             f"of a real signal is never positive."),))
 
 

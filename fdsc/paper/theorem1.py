@@ -936,7 +936,8 @@ def _q_entries(table):
         "needs (Q enters Theorem 1 only through differences); ours: Remark 4 design with "
         f"gamma_tol = {DEFAULT_GAMMA_TOL:g} (in-band mode PassC-HF): it reaches gamma_2 = "
         f"{ours.gammas[1]:.4f} by driving Q_1 to the margin; the printed Q's certify only "
-        f"gamma = ({p.gamma_1:.4g}, {p.gamma_2:.4g}).") for k, name in enumerate(("Q_1", "Q_2"))))
+        f"gamma = ({num(float(p.gamma_1), 4)}, {num(float(p.gamma_2), 4)}).")
+        for k, name in enumerate(("Q_1", "Q_2"))))
 
 
 def record_part() -> RecordPart:
