@@ -39,6 +39,8 @@ __all__ = [
     "HalvingRow",
     "StepHalving",
     "step_halving",
+    "StationaryComparison",
+    "against_comparators",
 ]
 
 
@@ -778,6 +780,65 @@ def step_halving(kind: str, *, horizon: float = 100.0, dt: float = STATIONARY_DT
         rows.append(HalvingRow(name, s1.energy(), s2.energy(), int(s1.switch_times.size),
                                int(s2.switch_times.size)))
     return StepHalving(kind, float(horizon), float(dt), tuple(rows))
+
+
+@dataclass(frozen=True)
+class StationaryComparison:
+    """FDSC against the comparator set (:mod:`fdsc.paper.comparators`) in one stationary case.
+
+    Parameters
+    ----------
+    kind : {"LF", "HF"}
+        The paper's disturbance.
+    best : str
+        The best fixed controller: the member of the comparator set of least energy.
+    best_energy, fdsc : float
+        ∫zᵀz of the best fixed controller and of FDSC (paper's gains and Q's).
+    """
+
+    kind: str
+    best: str
+    best_energy: float
+    fdsc: float
+
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, formatted (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: ``best`` (its name), ``best_energy``, ``ratio`` (FDSC's energy
+            over the best fixed one's, as a factor).
+
+        Examples
+        --------
+        >>> StationaryComparison("HF", "open loop", 8.74, 9.05).prose()["ratio"]
+        '×1.04'
+        """
+        return {"best": self.best, "best_energy": num(self.best_energy, 4),
+                "ratio": times(self.fdsc / self.best_energy)}
+
+
+def against_comparators() -> dict:
+    """FDSC against the best fixed controller of the paper's two stationary cases.
+
+    The energies come from :func:`fdsc.paper.baselines.baselines`, which runs the stationary
+    cases with every member of the comparator set (the open loop and the best certified HF design
+    included).
+
+    Returns
+    -------
+    dict
+        ``{"LF": StationaryComparison, "HF": StationaryComparison}``.
+    """
+    from .baselines import baselines
+    from .comparators import best_fixed
+
+    out = {}
+    for scen in baselines().family("stationary"):
+        name, energy = best_fixed(scen.energy, "aircraft")
+        out[scen.label] = StationaryComparison(scen.label, name, float(energy), float(scen.energy["FDSC"]))
+    return out
 
 
 def record_part() -> RecordPart:
