@@ -1,9 +1,9 @@
 """The reproduction record: every printed number beside ours, with a verdict.
 
 ``python -m fdsc reproduce --out DIR`` writes :func:`reproduction_record` to
-``DIR/reproduction.json``; the book's landing page reads its findings from it and the report renders every entry. The chapters are
-computed by several processes at once (:data:`JOBS_ENV`), which share their results through
-the cache folder (:func:`fdsc.paper.cache.shared_results`).
+``DIR/reproduction.json``; the book's landing page reads its findings from it and the report
+renders every entry. The chapters are computed by several processes at once (:data:`JOBS_ENV`),
+which share their results through the cache folder (:func:`fdsc.paper.cache.shared_results`).
 """
 
 import importlib
