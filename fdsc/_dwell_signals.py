@@ -7,11 +7,11 @@ where their ``__module__`` points.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.linalg import expm
 
+from ._dwell_bound import DwellTimeBound
 from ._dwell_lmi import _mode_matrices
 from ._validation import (
     as_count,
@@ -21,9 +21,6 @@ from ._validation import (
     check_type,
     frozen_array,
 )
-
-if TYPE_CHECKING:
-    from .dwell import DwellTimeBound
 
 __all__ = []
 
@@ -378,8 +375,6 @@ def check_dwell_bound(bound: DwellTimeBound, modes, x0, switch_times, sequence, 
     >>> c.holds(), c.n_switches
     (True, 2)
     """
-    from .dwell import DwellTimeBound  # (fdsc.dwell imports this module)
-
     check_type("bound", bound, DwellTimeBound, "an fdsc.dwell.DwellTimeBound")
     A = _mode_matrices(modes)
     if len(A) != len(bound.P) or A[0].shape != bound.P[0].shape:
