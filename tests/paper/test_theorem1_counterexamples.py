@@ -90,3 +90,61 @@ def test_residues_bound_the_energy_weighted_excess():
         # (equality up to the sampled law and left Riemann sums: 1 % of max γ² slack)
         assert r.ratio - r.bound_energy <= r.jumps + r.boundary + r.law_term + 1e-2 * r.bound_max
         assert r.eps >= 0
+
+
+def test_lmi_witness_closed_form():
+    # A_0 = −1, A_1 = −2, B = C = 1, D = 0, LF [0, 1], HF [10, ∞), Q = 1: L_0 = 1/2 and
+    # M_0 = [−1; 1]ᵀ diag(−1 − 1, 1 + 100)[−1; 1] = 99, so t_s = 2·99 + 1 and (T1-1) = −199 + 99
+    from fdsc.bands import Band
+    from fdsc.paper.theorem1_counterexamples import lmi_witness
+    from fdsc.plant import LTISystem
+    modes = [LTISystem([[-1.0]], [[1.0]], [[1.0]], [[0.0]]),
+             LTISystem([[-2.0]], [[1.0]], [[1.0]], [[0.0]])]
+    bands = [Band.lf(1.0), Band.hf(10.0)]
+    w = lmi_witness(modes, bands, [[[1.0]], [[1.0]]])
+    assert w.holds()
+    np.testing.assert_allclose(w.t_s[0], 199.0)
+    np.testing.assert_allclose(w.max_eig_1[0], -100.0)
+    # the same point checked through fdsc's own (T1-1)/(T1-2) matrices
+    for i, j in ((0, 1), (1, 0)):
+        L = 1.0 / (2.0 * -modes[i].A[0, 0])
+        M1, M2 = theorem1_matrices(modes[i], bands[i], bands[j], w.t_s[i] * np.array([[L]]),
+                                   w.t[i] * np.array([[L]]), np.eye(1), np.eye(1), w.gammas[i])
+        assert np.linalg.eigvalsh(_sym(M1)).max() < 0 and np.linalg.eigvalsh(_sym(M2)).max() < 0
+    with pytest.raises(ValueError, match="Hurwitz"):
+        lmi_witness([LTISystem([[1.0]], [[1.0]], [[1.0]], [[0.0]]), modes[1]], bands,
+                    [[[1.0]], [[1.0]]])
+
+
+def test_lmi_witness_on_the_smallest_counterexample_and_q_scaling():
+    from scipy.linalg import solve_continuous_lyapunov
+
+    from fdsc.paper.theorem1_counterexamples import CaseOutcome, lmi_witness, q_scaling
+    case = search_case(*SMALLEST[:2])
+    w = lmi_witness(case.modes, case.bands, case.Q)
+    assert w.holds()
+    for i, j in ((0, 1), (1, 0)):
+        L = solve_continuous_lyapunov(case.modes[i].A.T, -np.eye(case.n))
+        M1, M2 = theorem1_matrices(case.modes[i], case.bands[i], case.bands[j], w.t_s[i] * L,
+                                   w.t[i] * L, case.Q[i], case.Q[j], w.gammas[i])
+        assert np.linalg.eigvalsh(_sym(M1)).max() < 0 and np.linalg.eigvalsh(_sym(M2)).max() < 0
+    # a common scaling of the Q's leaves the switching signal unchanged
+    dt, T = case.grid()
+    x0 = _x0s(case)[0]
+    out = CaseOutcome.__new__(CaseOutcome)
+    for k, v in {"dt": dt, "horizon": T, "worst_x0": x0, "law": SMALLEST[2]}.items():
+        object.__setattr__(out, k, v)
+    q = q_scaling(case, out, 2.0**27, horizon=T / 4)
+    assert q.n_switches > 0 and q.mismatches == 0 and q.max_state_difference == 0
+    with pytest.raises(ValueError, match="positive"):
+        q_scaling(case, out, 0.0)
+
+
+def test_clean_runs_are_measured_and_do_not_chatter():
+    search = counterexample_search()
+    clean = search.clean()
+    assert clean and all(d.law == "previous" and d.chatter <= 0.05 for d in clean)
+    rows = search.dwell_rows()
+    assert len(rows) == len(search.diagnoses)
+    assert sum(r["clean"] == "yes" for r in rows) == len(clean)
+    assert all("previous" not in str(v) for r in rows for v in r.values())
