@@ -555,6 +555,37 @@ class SearchResult:
         return sorted(rows, key=lambda r: (r["reading of ẋ"] != "measured ẋ", r["clean"] != "yes",
                                            r["one-sample dwells"], r["seed"]))
 
+    def prose(self) -> dict:
+        """The search's numbers as text for the chapter (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict of str
+            Counts of cases and runs (``tried``, ``feasible``, ``not_hurwitz``,
+            ``solver_failures``, ``diverging_measured``, ``diverging_candidate``,
+            ``artefacts_measured``, ``artefacts_candidate``), the clean runs (``n_clean``,
+            ``clean_limit``, ``clean_max``, ``chatter_min``, ``chatter_max`` over the measured
+            runs that are not clean), and the grid constants.
+        """
+        from .prose import count, num, pct
+
+        cnt = self.counts()
+        clean = self.clean()
+        dirty = [d.chatter for d in self.diagnoses if d.law == "previous" and d.chatter > CLEAN_LIMIT]
+        return {"tried": count(cnt["tried"]), "feasible": count(cnt["feasible"]),
+                "not_hurwitz": count(cnt["not_hurwitz"]),
+                "solver_failures": count(cnt["solver_failures"]),
+                "diverging_measured": count(cnt["diverging_previous"]),
+                "diverging_candidate": count(cnt["diverging_candidate"]),
+                "artefacts_measured": count(cnt["sampling_artefacts_previous"]),
+                "artefacts_candidate": count(cnt["sampling_artefacts_candidate"]),
+                "n_clean": count(len(clean)), "clean_limit": pct(CLEAN_LIMIT),
+                "clean_max": pct(max((d.chatter for d in clean), default=0.0), 1),
+                "n_dirty": count(len(dirty)),
+                "chatter_min": pct(min(dirty, default=0.0)), "chatter_max": pct(max(dirty, default=0.0)),
+                "n_initial": count(N_INITIAL), "slow": num(SLOW_CONSTANTS, 2),
+                "dtf": num(DT_FRACTION, 1), "maxsteps": count(MAX_STEPS), "refine": count(REFINE)}
+
     def causes(self) -> dict:
         """Number of divergent runs per cause and law.
 
