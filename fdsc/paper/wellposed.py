@@ -58,6 +58,8 @@ __all__ = [
     "law_study",
     "DwellLawCheck",
     "dwell_law_check",
+    "comparator_energies",
+    "against_comparators",
     "record_part",
 ]
 
@@ -349,8 +351,11 @@ def convergence_study(*, horizon: float = 50.0, dt: float = STATIONARY_DT,
     return ConvergenceStudy(float(horizon), tuple(rows))
 
 
-#: Parameter grids of the three well-posed laws (relative margin; seconds).
+#: Parameter grids of the well-posed laws: hysteresis with a relative margin h
+#: (s_j − s_a > h(|s_j| + |s_a|)), hysteresis with an absolute margin h (s_j − s_a > h, in the
+#: units of the printed Q's scores), minimum dwell time and moving window (seconds).
 LAW_GRIDS = {"hysteresis": (0.1, 0.5, 0.9, 0.99),
+             "hysteresis_abs": (1e3, 1e4, 1e5, 1e6, 1e8),
              "dwell": (0.002, 0.01, 0.1, 1.0, 10.0),
              "window": (0.01, 0.1, 1.0, 10.0)}
 
@@ -369,6 +374,8 @@ def _law_case(case):
 
 
 def _rule(law, p):
+    if law == "hysteresis_abs":
+        return SwitchRule.hysteresis(p, relative=False)
     return {"hysteresis": SwitchRule.hysteresis, "dwell": SwitchRule.dwell_time,
             "window": SwitchRule.moving_window}[law](p)
 
@@ -602,6 +609,75 @@ def dwell_law_check(*, n_initial: int = 10, horizon: float = 120.0, dt: float = 
     return DwellLawCheck(float(tau), float(horizon), ratios, np.asarray(runs.switches))
 
 
+@cached
+def comparator_energies(*, dt: float = STATIONARY_DT) -> dict:
+    """Energies of the comparator set's members that :func:`law_study` does not run (the open
+    loop and the best HF design) on :data:`LAW_CASES` at ``dt``.
+
+    Parameters
+    ----------
+    dt : float, optional
+        Step in s (the law study's).
+
+    Returns
+    -------
+    dict
+        ``{(name, case): ∫zᵀz}``.
+    """
+    from .comparators import HF_BEST
+    from .examples import OPEN_LOOP
+    from .passive_controllers import hf_best
+
+    dt = as_positive("dt", dt)
+    plant = aircraft()
+    best = hf_best()
+    gains = {OPEN_LOOP: np.zeros_like(best.K), HF_BEST: best.K}
+    cases, keys = [], []
+    for c in LAW_CASES:
+        d, horizon = _law_case(c)
+        for name, K in gains.items():
+            cases.append(Case(plant.closed_loop(K), d, horizon, dt))
+            keys.append((name, c))
+    runs = simulate_batch(cases)
+    return {k: float(e) for k, e in zip(keys, runs.energy, strict=True)}
+
+
+def against_comparators(study: LawStudy, extra: dict, law: str = "dwell",
+                        p: float | None = None) -> list:
+    """A law against the best fixed controller of each case (the comparator set of
+    :mod:`fdsc.paper.comparators`).
+
+    Parameters
+    ----------
+    study : LawStudy
+    extra : dict
+        :func:`comparator_energies` (the members the study does not run).
+    law : str, optional
+        A key of :data:`LAW_GRIDS`.
+    p : float, optional
+        The law's parameter (default: :meth:`LawStudy.default`).
+
+    Returns
+    -------
+    list of dict
+        Per case: ``case``, ``best fixed`` (name), ``best fixed energy``, ``law energy``,
+        ``ratio`` (law over best fixed), and the energy of every member of the set.
+    """
+    from .comparators import best_fixed, comparators
+
+    p = study.default(law) if p is None else p
+    rows = []
+    for c in LAW_CASES:
+        energy = {n: extra[(n, c)] if (n, c) in extra else study.energy[(n, 0.0, c)]
+                  for n in comparators("aircraft")}
+        name, e = best_fixed(energy, "aircraft")
+        law_e = study.energy[(law, p, c)]
+        rows.append({"case": c, "best fixed": str(name), "best fixed energy": float(e),
+                     "law energy": law_e, "ratio": law_e / float(e),
+                     **{f"energy {n}": v for n, v in energy.items()}})
+    return rows
+
+
 def _sliding_entry(regions, conv):
     spread = {c: conv.energy_spread(c) for c in conv.cases()}
     rec = {"angular_share_d0": {q: dict(zip(REGION_KINDS, map(float, s), strict=True))
@@ -658,16 +734,18 @@ def record_part() -> RecordPart:
                                 "switches": check.switches.tolist()}
     reference = _reference_record(study)
     hd = {"hysteresis": _law_record(study, "hysteresis"), "dwell": _law_record(study, "dwell"),
-          "reference": reference, "cases": list(LAW_CASES), "dt": study.dt}
+          "hysteresis_absolute": _law_record(study, "hysteresis_abs"),
+          "reference": reference, "cases": list(LAW_CASES), "dt": study.dt,
+          "against_comparators": against_comparators(study, comparator_energies(dt=study.dt))}
     hd["dwell_time_bound"] = dwell
     return RecordPart((
         _sliding_entry(regions, conv),
         entry("hysteresis_dwell", "paper Remark 7 (hysteresis, minimum dwell time; nothing printed)",
               None, hd, "new",
-              "energies and switch counts at dt and dt/2 of the hysteresis (relative margin) and "
-              "minimum-dwell-time laws on the paper's stationary, mixed (rho_p = 0.1) and piecewise "
-              "(T = 500 s, rho_t = 0.2) cases; a law is well-posed here if its switch count does "
-              "not grow when dt halves"),
+              "energies and switch counts at dt and dt/2 of the hysteresis (relative and absolute "
+              "margin) and minimum-dwell-time laws on the paper's stationary, mixed (rho_p = 0.1) "
+              "and piecewise (T = 500 s, rho_t = 0.2) cases; a law is well-posed here if its "
+              "switch count does not grow when dt halves"),
         entry("eef_switching", "paper Remark 6 (an FD-EEF-based law; nothing printed)", None,
               {"window": _law_record(study, "window"), "reference": reference,
                "cases": list(LAW_CASES), "dt": study.dt}, "new",

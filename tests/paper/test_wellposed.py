@@ -54,3 +54,30 @@ def test_law_study_dwell_bounds_switches_and_hysteresis_does_not():
     # the printed law chatters: its switch count nearly doubles when dt halves
     assert all(study.switches_half[("printed", 0.0, c)] > 1.6 * study.switches[("printed", 0.0, c)]
                for c in LAW_CASES)
+
+
+def test_absolute_hysteresis_is_well_posed_only_where_nothing_switches():
+    from fdsc.paper.wellposed import LAW_CASES
+    study = law_study()
+    grid = LAW_GRIDS["hysteresis_abs"]
+    for h in grid:
+        if study.well_posed("hysteresis_abs", h):
+            assert all(study.switches[("hysteresis_abs", h, c)] == 0 for c in LAW_CASES)
+    assert not any(study.well_posed("hysteresis", h) for h in LAW_GRIDS["hysteresis"])
+
+
+def test_dwell_law_against_the_comparator_set():
+    from fdsc.paper.comparators import comparators
+    from fdsc.paper.wellposed import LAW_CASES, against_comparators, comparator_energies
+    study = law_study()
+    extra = comparator_energies(dt=study.dt)
+    rows = against_comparators(study, extra)
+    assert [r["case"] for r in rows] == list(LAW_CASES)
+    for r in rows:
+        members = {n: r[f"energy {n}"] for n in comparators("aircraft")}
+        assert r["best fixed"] in members
+        assert r["best fixed energy"] == min(members.values())
+        assert np.isclose(r["ratio"], r["law energy"] / r["best fixed energy"])
+        # the comparator set includes the paper's three gains: the best can only be better
+        assert r["best fixed energy"] <= min(study.energy[(n, 0.0, r["case"])]
+                                             for n in ("PassC-EF", "PassC-LF", "PassC-HF"))
