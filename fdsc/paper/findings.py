@@ -32,6 +32,9 @@ class Findings:
     verdicts : dict
         ``{verdict: number of entries}`` over the entries that set a printed number beside ours
         (match, close, differs, not reproducible).
+    gains_reproduced : int
+        The paper's four printed gains (K_f1, K_f2, K_f3, K_e) whose recomputation matches or is
+        close.
     claims : dict
         ``{PASS, PARTLY, FAIL: count}`` of the claims checklist.
     figures_redrawn, figures_total : int
@@ -73,6 +76,7 @@ class Findings:
     """
 
     verdicts: dict
+    gains_reproduced: int
     claims: dict
     figures_redrawn: int
     figures_total: int
@@ -108,6 +112,7 @@ class Findings:
                          sorted(self.best_wins.items(), key=lambda kv: -kv[1]) if k)
         out = {
             "n_printed": count(sum(v.values())),
+            "gains_reproduced": count(self.gains_reproduced),
             "n_reproduced": count(sum(v[k] for k in _REPRODUCED)),
             "n_match": count(v["match"]), "n_close": count(v["close"]),
             "n_differs": count(v["differs"]), "n_not_reproducible": count(v["not reproducible"]),
@@ -181,8 +186,8 @@ def findings(record):
         If the record lacks an entry the findings need (named).
     """
     e = _entries(record)
-    needed = ("comparators", "baselines", "monte_carlo", "mixed_crossover", "thm1_gammas",
-              "theorem1_counterexamples", *PRINTED_BOUNDS)
+    needed = ("K_f1", "K_f2", "K_f3", "K_e", "comparators", "baselines", "monte_carlo",
+              "mixed_crossover", "thm1_gammas", "theorem1_counterexamples", *PRINTED_BOUNDS)
     missing = [k for k in needed if k not in e]
     if missing:
         raise KeyError(f"the record lacks the entries {missing} that the findings read")
@@ -201,8 +206,10 @@ def findings(record):
     crossover = e["mixed_crossover"]
     tc = e["theorem1_counterexamples"]["recomputed"]["counts"]
     airframe, fast_pole, w_h = _poles()
+    gains = sum(e[k]["verdict"] in _REPRODUCED for k in ("K_f1", "K_f2", "K_f3", "K_e"))
     return Findings(
-        verdicts=verdicts, claims=claims, figures_redrawn=redrawn, figures_total=total,
+        verdicts=verdicts, gains_reproduced=gains, claims=claims, figures_redrawn=redrawn,
+        figures_total=total,
         n_cases=sum(best_wins.values()), best_wins=best_wins, switched_wins=switched_wins,
         monte_carlo=_monte_carlo(e["monte_carlo"]),
         lf_switches=int(lf_fig["switches"]["FDSC"]), lf_horizon=float(lf_fig["horizon"]),

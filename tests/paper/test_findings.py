@@ -33,6 +33,8 @@ def test_the_numbers_are_the_records(found):
     assert sum(found.verdicts.values()) == sum(
         e["verdict"] in ("match", "close", "differs", "not reproducible") for e in rec["entries"])
     assert found.figures_total == 7 and found.figures_redrawn <= 7
+    assert found.gains_reproduced == sum(by_id[k]["verdict"] in ("match", "close")
+                                         for k in ("K_f1", "K_f2", "K_f3", "K_e"))
     assert sum(found.claims.values()) == len(rec["claims"])
     # the ideal segment law can only be compared where it has a value at every ρ_t
     assert 0 < found.ideal["aircraft"] and 0 < found.ideal["generic"]
