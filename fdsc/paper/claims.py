@@ -11,9 +11,12 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
+from .comparators import DEFINITION, best_fixed
 from .data import paper_data
+from .examples import beats
 from .names import CONTROLLERS
 from .nonstationary import PAPER_CROSSOVER, SweepStudy, crossover_in, scaled_crossing, sweep_study
+from .prose import times
 from .results import RecordPart, entry
 from .stationary import hf_l2_claims, hf_output_claims, lf_output_claims, stationary_runs
 from .verdict import CLAIM_VERDICTS
@@ -241,9 +244,10 @@ def sweep_claims(study: SweepStudy, *, half: bool = False) -> list:
         src8, "share of the ρ_t grid at which FDSC has the smallest energy of the four "
         "controllers; PASS if all, PARTLY if some", float(fdsc_best.mean()),
         _grade(bool(fdsc_best.all()), bool(fdsc_best.any())),
-        f"FDSC is best at {int(fdsc_best.sum())} of {fdsc_best.size} values of ρ_t; its energy is "
-        f"{float(np.max(ep['FDSC'] / np.minimum(ep['PassC-EF'], ep['PassC-LF']))):.3g} of the better "
-        "fixed gain's at most"))
+        f"of the paper's four controllers FDSC has the least energy at {int(fdsc_best.sum())} of "
+        f"{fdsc_best.size} values of ρ_t; its energy is at most "
+        f"{times(float(np.max(ep['FDSC'] / np.minimum(ep['PassC-EF'], ep['PassC-LF']))))} that of "
+        "the better of PassC-EF and PassC-LF"))
     first_loss = crossover_in(pw, "PassC-LF")
     gap = np.minimum(ep["PassC-EF"], ep["PassC-LF"]) - ep["FDSC"]
     shrinking = bool(np.all(np.diff(gap) < 0))
@@ -324,28 +328,33 @@ def _summary_claims(sweep_rows, lf, hf, study):
         _grade(ok_in and ok_out and p2.verdict == "PASS", ok_in or ok_out or p2.verdict != "FAIL"),
         f"in band {in_band:.3g} (holds); out of band {out_ratio:.3g} times PassC-LF's energy "
         f"({out_vs_hf:.3g} times below PassC-HF's); localized: {p2.verdict}")]
-    # every scenario of the simulation section: which of the four is best, and how far FDSC is from it
-    scen = [("LF", {n: lf.energy[n] for n in CONTROLLERS}), ("HF", {n: hf.energy[n] for n in CONTROLLERS})]
-    for runs, sym in ((study.mixed, "ρ_p"), (study.piecewise, "ρ_t")):
-        scen += [(f"{sym} = {p:g}", {n: runs.energy[n][i] for n in CONTROLLERS})
-                 for i, p in enumerate(runs.param)]
-    fixed = ("PassC-EF", "PassC-LF", "PassC-HF")
-    wins = sum(e["FDSC"] < min(e[n] for n in fixed) for _, e in scen)
-    ratio = [e["FDSC"] / min(e[n] for n in fixed) for _, e in scen]
+    # every scenario of the simulation section against the comparator set (the best fixed
+    # controller of each case: the open loop, the paper's three fixed gains, the best HF design),
+    # and, labelled as such, among the paper's four controllers
+    from .baselines import baselines
+
+    scen = [(s.label, s.energy) for s in baselines().scenarios]
+    best = [best_fixed(e)[1] for _, e in scen]
+    ratio = [e["FDSC"] / b for (_, e), b in zip(scen, best, strict=True)]
+    wins = sum(beats(r) for r in ratio)
     within2 = sum(r <= 2 for r in ratio)
+    four = sum(e["FDSC"] < min(e[n] for n in CONTROLLERS if n != "FDSC") for _, e in scen)
+    worst = int(np.argmax(ratio))
     rows.append(ClaimRow(
         "an example illustrates the proposed FDSC control scheme and demonstrates its effectiveness "
         "on adjusting the in-band and out-of-band disturbance attenuation performance", "Sec. V "
         "(Conclusion)",
         "over every scenario of the simulation section (LF, HF, the ρ_p and ρ_t grids), the "
-        "scenarios where FDSC has less energy than every fixed gain, and where it is within a "
-        "factor 2 of the best; PASS if within 2 everywhere, PARTLY if best somewhere",
+        "scenarios where FDSC has less energy than the best fixed controller (the comparator set: "
+        f"{DEFINITION}), and where it is within a factor 2 of it; PASS if within 2 everywhere, "
+        "PARTLY if better somewhere",
         {"scenarios": len(scen), "fdsc_best": int(wins), "fdsc_within_2": int(within2),
-         "worst_ratio_to_best_fixed": float(max(ratio))},
+         "worst_ratio_to_best_fixed": float(max(ratio)), "fdsc_best_of_paper_four": int(four)},
         _grade(within2 == len(scen), wins > 0),
-        f"FDSC is best in {wins} of {len(scen)} scenarios and within a factor 2 of the best fixed "
-        f"gain in {within2}; at worst {max(ratio):.3g} times the best (scenario "
-        f"{scen[int(np.argmax(ratio))][0]})"))
+        f"FDSC has less energy than the best fixed controller in {wins} of {len(scen)} scenarios "
+        f"and is within a factor 2 of it in {within2}; at worst {times(max(ratio))} its energy "
+        f"(scenario {scen[worst][0]}). Among the paper's four controllers only, FDSC has the least "
+        f"energy in {four} of the {len(scen)}"))
     return rows
 
 
