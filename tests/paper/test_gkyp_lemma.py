@@ -80,8 +80,11 @@ def test_printed_bounds_rows(table):
 def test_table_record_entries(table):
     part = table.to_record()
     _check_part(part, ["sigma_peak", "lemma1_gamma"])
-    sigma_peak = part.entries[0]
-    assert sigma_peak["verdicts"]["K_f2"] == "close"
+    sigma_peak, lemma1 = part.entries
+    # the printed bounds are judged once, in their own entries: these two carry no verdict on them
+    assert sigma_peak["verdict"] == lemma1["verdict"] == "new"
+    assert sigma_peak["paper"] is None and "verdicts" not in sigma_peak
+    assert sigma_peak["printed_bounds"]["K_f2"] == {"MF": 0.4025}
     assert sigma_peak["recomputed"]["K_f3"]["HF"] == table.pair("K_f3", "HF").peak
 
 
