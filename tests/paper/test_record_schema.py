@@ -127,3 +127,23 @@ def test_a_record_that_breaks_the_format_is_rejected(validator, change, message)
     change(bad)
     with pytest.raises(jsonschema.ValidationError, match=message):
         validator.validate(bad)
+
+
+def test_the_merged_entries_have_their_shape(validator):
+    """A printed bound carries its readings; the comparator set names its members and counts."""
+    record = synthetic_record()
+    bound = entry("bound_f3", "Sec. IV", 0.1714, 1.605, "not reproducible", "n")
+    record["entries"].append(bound)
+    assert "readings" in _errors(validator, record)
+    bound["readings"] = {"band peak of the printed gain (the stated quantity)": 1.605,
+                         "Lemma 1's gamma for the printed gain": 1.605,
+                         "frequency-domain candidates": {}, "time domain, nearest of the quantities "
+                         "searched": {}, "time domain, equal to the printed value": [],
+                         "time domain, quantities searched": 494}
+    validator.validate(record)
+    comparators = entry("comparators", "ours", None, {"aircraft": {"names": ["open loop"], "best": {
+        "stationary": {"open loop": -1}}}, "generic": {"names": ["open loop"], "best": {}}}, "new", "n")
+    record["entries"].append(comparators)
+    assert "-1 is less than the minimum of 0" in _errors(validator, record)
+    comparators["recomputed"]["aircraft"]["best"]["stationary"]["open loop"] = 2
+    validator.validate(record)
