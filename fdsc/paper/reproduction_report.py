@@ -27,6 +27,7 @@ __all__ = [
     "figure_rows",
     "claim_rows",
     "finding_rows",
+    "errata",
     "summary",
     "claims_sentence",
 ]
@@ -235,6 +236,47 @@ def finding_rows(record):
     """
     return [{"id": e["id"], "source": e["source"], "note": e["note"]}
             for e in _entries(record) if e["verdict"] == "new"]
+
+
+def errata(record):
+    """The errata for the paper's authors: every printed number that differs or cannot be
+    reproduced, then every claim that fails, each with what decides it.
+
+    Parameters
+    ----------
+    record : dict
+        The reproduction record.
+
+    Returns
+    -------
+    list of dict
+        ``n, where, printed, ours, verdict, why`` (values as compact text), printed numbers first
+        in the record's order, then the failing claims.
+
+    Raises
+    ------
+    ValueError
+        If an entry's or a claim's verdict is unknown.
+
+    Examples
+    --------
+    >>> rec = {"entries": [
+    ...     {"id": "a", "source": "Sec. IV, K", "paper": 0.2, "recomputed": 0.119, "verdict": "differs",
+    ...      "note": "bisected"},
+    ...     {"id": "b", "source": "Sec. IV", "paper": 1.0, "recomputed": 1.0, "verdict": "match",
+    ...      "note": "equal"}],
+    ...     "claims": [{"claim": "c", "source": "Abstract", "measure": "m", "value": 3.0,
+    ...                 "verdict": "FAIL", "reason": "r"}]}
+    >>> [(r["n"], r["where"], r["verdict"]) for r in errata(rec)]
+    [(1, 'Sec. IV, K', 'differs'), (2, 'Abstract', 'FAIL')]
+    """
+    rows = [{"where": e["source"], "printed": compact(e["paper"]), "ours": compact(e["recomputed"]),
+             "verdict": e["verdict"], "why": e["note"]}
+            for e in _entries(record) if e["verdict"] in ("differs", "not reproducible")]
+    rows += [{"where": c["source"], "printed": c["claim"], "ours": compact(c["value"]),
+              "verdict": c["verdict"], "why": c["reason"]}
+             for c in _claims(record) or [] if c["verdict"] == "FAIL"]
+    return [{"n": k, **r} for k, r in enumerate(rows, start=1)]
 
 
 def summary(record):

@@ -10,6 +10,7 @@ from fdsc.paper.reproduction_report import (
     NO_CLAIM,
     claim_rows,
     claims_sentence,
+    errata,
     figure_rows,
     figures_named,
     finding_rows,
@@ -116,6 +117,17 @@ def test_claim_rows():
 def test_finding_rows_are_the_new_entries():
     assert [r["id"] for r in finding_rows(record())] == ["sweep", "hf_best"]
     assert set(finding_rows(record())[0]) == {"id", "source", "note"}
+
+
+def test_errata_list_what_differs_and_what_fails():
+    rows = errata(record())
+    # the printed bound that cannot be reproduced, then the two failing claims; matches, inputs and
+    # findings are not errata
+    assert [(r["n"], r["where"], r["verdict"]) for r in rows] == [
+        (1, "Sec. IV", "not reproducible"), (2, "Sec. IV, text on paper Fig. 7", "FAIL"),
+        (3, "Sec. IV, text on paper Fig. 10", "FAIL")]
+    assert rows[0]["printed"] == "0.3443" and rows[1]["printed"] == "words on Sec. IV, text on paper Fig. 7"
+    assert errata(record(claims=False))[-1]["verdict"] == "not reproducible"
 
 
 def test_summary_counts_every_verdict():
