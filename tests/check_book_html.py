@@ -35,6 +35,16 @@ else reaches the reader as source. In the visible text, raw TeX is:
 
 :func:`raw_tex_snippets` applies these rules to any text; ``tests/test_browser.py`` uses it on
 the text a browser shows once MathJax has run.
+
+Readers' pages
+--------------
+The landing page (:data:`ROOT_PAGE`) must open with a section "Findings at a glance" and hold at
+most :data:`MAX_ROOT_WORDS` words of visible text. No page's visible text may speak to the project
+instead of the reader (:data:`PROJECT_SPEAK`: issue numbers, paths of test files, "record entry",
+the ids of the reproduction record's entries outside the report's tables, raw NumPy arrays
+printed with runs of spaces). And code a reader sees (notebook input areas not folded away by a
+``hide-input`` toggle, MyST-NB's ``<details class="hide ...">``) may be at most
+:data:`MAX_CODE_SHARE` of a page's words.
 """
 
 import re
@@ -44,7 +54,7 @@ from itertools import pairwise
 from pathlib import Path
 from urllib.parse import unquote, urlparse
 
-__all__ = ["check", "visible_text", "raw_tex_snippets"]
+__all__ = ["check", "visible_text", "raw_tex_snippets", "code_share", "project_speak"]
 
 #: Chapters and the least number of figures each must show.
 MIN_IMAGES = {"frequency_ranges.html": 3, "gkyp_lemma.html": 1, "passive_controllers.html": 3,
@@ -52,6 +62,41 @@ MIN_IMAGES = {"frequency_ranges.html": 3, "gkyp_lemma.html": 1, "passive_control
               "stationary.html": 4}
 #: Raw-TeX findings reported per page (the rest are counted).
 MAX_TEX_REPORTS = 3
+#: The landing page, its heading and its length in words of visible text.
+ROOT_PAGE = "intro.html"
+FINDINGS_HEADING = "Findings at a glance"
+MAX_ROOT_WORDS = 1500
+#: Largest share of a page's words that may be visible code, and the pages exempt: the own-plant
+#: chapter is the library's worked example, whose code is what the reader came for.
+MAX_CODE_SHARE = 0.15
+CODE_PAGES = {"own_plant.html"}
+#: Ids of the reproduction record's entries that read as code (the report's tables show them,
+#: prose must not); paper symbols such as K_f1 or Q_1 are not listed, nor ids that are also the
+#: name of a chapter (generic_example, monte_carlo, theorem1_counterexamples: the environment
+#: page's table lists chapters by file name).
+RECORD_IDS = (
+    "alpha_localized", "alpha_mixed", "bound_e", "bound_f1", "bound_f2", "bound_f3",
+    "bound_time_domain", "claims_step_halving", "eef_switching", "epf_aircraft_signs",
+    "epsilon_scan_lf", "epsilon_scan_mf", "fdsc_configuration", "gamma_slip_in_band",
+    "hf_best", "hf_good_in_band", "hf_l2_claims", "hf_outputs_claims",
+    "hysteresis_dwell", "law_chattering", "lemma1_gamma", "lemma1_gamma_squared",
+    "lf_outputs_claims", "lmi_vs_direct", "mixed_crossover", "p1_global",
+    "p2_localized", "paley_wiener_share", "piecewise_crossover", "plot_scalings", "prop1_checks",
+    "prop1_factorizations", "prop1_short_windows", "psi_weight_sign", "remark1_crossings",
+    "remark3_gap", "sigma_peak", "step_halving_hf", "step_halving_lf", "sweep_parameters",
+    "sweep_step_halving", "table1_checks", "thm1_gammas",
+    "thm1_lyapunov_jumps", "thm1_mode_reference", "thm1_statement1", "thm1_statement2",
+    "thm1_statement3", "three_mode")
+#: Prose that speaks to the project: (what, pattern).
+PROJECT_SPEAK = (
+    ("an issue number", re.compile(r"\bissues? #?\d+\b", re.IGNORECASE)),
+    ("a test path", re.compile(r"\btests?/[\w/]+\.py\b")),
+    ("'record entry'", re.compile(r"\brecord entr(?:y|ies)\b", re.IGNORECASE)),
+    ("a raw NumPy array", re.compile(r"\[\s*-?\d+\.?\d*(?:e[-+]?\d+)? {2,}-?\d|\barray\(")),
+    ("a record-entry id", re.compile(r"(?<![\w.])(?:" + "|".join(RECORD_IDS) + r")(?![\w(])")),
+)
+#: Pages whose tables list the record's ids by design.
+_ID_PAGES = {"report.html"}
 
 #: Elements whose text is not prose: metadata, code and maths that MathJax typesets.
 _HIDDEN_TAGS = {"head", "title", "script", "style", "noscript", "template", "code", "pre", "kbd",
@@ -84,8 +129,11 @@ class _Collector(HTMLParser):
         super().__init__()
         self.images, self.links, self.loads = [], [], []
         self._text = []
-        self._open = []  # (tag, hidden) of each open element
+        self._open = []  # (tag, hidden, code input, folded) of each open element
         self._n_hidden = 0
+        self._n_input = 0   # inside a notebook input area
+        self._n_folded = 0  # inside a hide-input toggle
+        self._code = []
 
     @property
     def text(self):
@@ -105,14 +153,21 @@ class _Collector(HTMLParser):
             self._text.append("\n")
         if tag not in _VOID_TAGS:
             hidden = _hidden(tag, attrs)
-            self._open.append((tag, hidden))
+            classes = (a.get("class") or "").split()
+            code_input = "cell_input" in classes
+            folded = tag == "details" and "hide" in classes
+            self._open.append((tag, hidden, code_input, folded))
             self._n_hidden += hidden
+            self._n_input += code_input
+            self._n_folded += folded
 
     def handle_endtag(self, tag):
         # close up to the matching element (HTML lets some end tags be omitted); stray ones are ignored
         for i in range(len(self._open) - 1, -1, -1):
             if self._open[i][0] == tag:
-                self._n_hidden -= sum(h for _, h in self._open[i:])
+                self._n_hidden -= sum(o[1] for o in self._open[i:])
+                self._n_input -= sum(o[2] for o in self._open[i:])
+                self._n_folded -= sum(o[3] for o in self._open[i:])
                 del self._open[i:]
                 break
         if tag in _BLOCK_TAGS and not self._n_hidden:
@@ -121,6 +176,12 @@ class _Collector(HTMLParser):
     def handle_data(self, data):
         if not self._n_hidden:
             self._text.append(data)
+        if self._n_input and not self._n_folded:
+            self._code.append(data)
+
+    @property
+    def code(self):
+        return " ".join(self._code)
 
 
 def visible_text(html):
@@ -188,6 +249,49 @@ def raw_tex_snippets(text):
     return snippets
 
 
+def code_share(html):
+    """Share of a page's words that are visible code (input areas not folded by hide-input).
+
+    Parameters
+    ----------
+    html : str
+
+    Returns
+    -------
+    float
+        0 for a page without words.
+    """
+    c = _Collector()
+    c.feed(html)
+    c.close()
+    prose, code = len(c.text.split()), len(c.code.split())
+    return code / (prose + code) if prose + code else 0.0
+
+
+def project_speak(text, page=""):
+    """``[(what, snippet)]``: prose that speaks to the project (:data:`PROJECT_SPEAK`).
+
+    Parameters
+    ----------
+    text : str
+        Visible text of a page.
+    page : str, optional
+        The page's file name (record-entry ids are allowed on :data:`_ID_PAGES`).
+
+    Returns
+    -------
+    list of tuple
+    """
+    found = []
+    for what, pattern in PROJECT_SPEAK:
+        if what == "a record-entry id" and page in _ID_PAGES:
+            continue
+        for m in pattern.finditer(text):
+            window = text[max(0, m.start() - _CONTEXT):m.end() + _CONTEXT]
+            found.append((what, " ".join(window.split())))
+    return found
+
+
 def check(root):
     root = Path(root)
     problems = []
@@ -220,6 +324,19 @@ def check(root):
         if glyphs:
             problems.append(f"{page.name}: emoji or pictographs in visible text (no font may "
                             f"draw them): {' '.join(glyphs)}")
+        share = len(c.code.split()) / max(1, len(c.code.split()) + len(c.text.split()))
+        if share > MAX_CODE_SHARE and page.name not in CODE_PAGES:
+            problems.append(f"{page.name}: visible code is {share:.0%} of the page's words "
+                            f"(at most {MAX_CODE_SHARE:.0%})")
+        problems += [f"{page.name}: {what} in the prose: '{snippet}'"
+                     for what, snippet in project_speak(c.text, page.name)[:MAX_TEX_REPORTS]]
+        if page.name == ROOT_PAGE:
+            words = len(c.text.split())
+            if words > MAX_ROOT_WORDS:
+                problems.append(f"{page.name}: {words} words of visible text, the landing page may "
+                                f"have at most {MAX_ROOT_WORDS}")
+            if FINDINGS_HEADING not in c.text:
+                problems.append(f"{page.name}: no section '{FINDINGS_HEADING}'")
         tex = raw_tex_snippets(c.text)
         problems += [f"{page.name}: raw TeX in visible text: '{s}'" for s in tex[:MAX_TEX_REPORTS]]
         if len(tex) > MAX_TEX_REPORTS:
@@ -230,5 +347,5 @@ def check(root):
 if __name__ == "__main__":
     found = check(sys.argv[1] if len(sys.argv) > 1 else "book/_build/html")
     print("\n".join(found) or "book HTML: images present, internal links resolve, no web loads, "
-                              "no raw TeX, no emoji")
+                              "no raw TeX, no emoji, findings first, no project speak, little code")
     sys.exit(1 if found else 0)

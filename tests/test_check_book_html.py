@@ -122,7 +122,7 @@ def test_visible_text_drops_typeset_maths_and_separates_blocks():
 
 def test_page_built_by_sphinx_with_display_maths_in_prose_is_reported(tmp_path):
     shutil.copy(SPHINX_PAGE, tmp_path / "defect.html")
-    found = check(tmp_path)
+    found = [p for p in check(tmp_path) if "visible code" not in p]   # (the fixture shows code)
     assert len(found) == 3, found
     assert all(p.startswith("defect.html: raw TeX in visible text: '") for p in found)
     # the list item: $<span class="math">...</span>$
@@ -138,3 +138,51 @@ def test_sphinx_page_finds_no_tex_in_typeset_maths_or_code():
     for typeset_or_code in ("a_1", "x = ", "pip install", "cell output", "$HOME", "Defect &"):
         assert typeset_or_code not in text
     assert len(raw_tex_snippets(text)) == 3
+
+
+READERS_PAGE = Path(__file__).resolve().parent / "fixtures" / "readers_page.html"
+
+
+def test_visible_code_share_counts_only_code_not_folded_away():
+    from check_book_html import code_share
+
+    html = READERS_PAGE.read_text(encoding="utf-8")
+    # the folded cell's words do not count; the shown cell's do
+    share = code_share(html)
+    shown = len("shown = one + two + three + four + five + six + seven + eight + nine + ten + eleven "
+                "+ twelve".split())
+    assert share == pytest.approx(shown / (shown + len(visible_text(html).split())))
+    cell = '<div class="cell docutils container">\n'
+    folded = html.replace(cell + '<div class="cell_input',
+                          cell + '<details class="hide"><div class="cell_input')
+    folded = folded.replace("twelve</pre>\n</div></div></div></div>",
+                            "twelve</pre>\n</div></div></div></details></div>")
+    assert code_share(folded) == 0.0
+
+
+def test_project_speak_is_reported_with_what_it_is():
+    from check_book_html import project_speak
+
+    text = visible_text(READERS_PAGE.read_text(encoding="utf-8"))
+    found = [what for what, _ in project_speak(text, "stationary.html")]
+    assert found == ["an issue number", "a test path", "'record entry'", "a raw NumPy array",
+                     "a record-entry id"]
+    # the report's tables list the ids by design; paper symbols (K_f1, Q_1) are never reported
+    assert "a record-entry id" not in [w for w, _ in project_speak(text, "report.html")]
+    assert project_speak("the gains K_f1 and K_f3 and the weights Q_1, Q_2", "x.html") == []
+
+
+def test_readers_pages_are_checked_in_the_build(tmp_path):
+    shutil.copy(READERS_PAGE, tmp_path / "stationary.html")
+    words = " ".join(["word"] * 1600)
+    write(tmp_path, "intro.html", f"<h1>Title</h1><h2>Findings at a glance</h2><p>{words}</p>")
+    write(tmp_path, "own_plant.html",
+          '<div class="cell_input"><pre>' + "x = 1\n" * 50 + "</pre></div><p>a</p>")
+    found = "\n".join(check(tmp_path))
+    assert "stationary.html: visible code is" in found
+    assert "stationary.html: an issue number in the prose" in found
+    assert "intro.html: 1605 words of visible text" in found    # 1600 + title and heading
+    assert "own_plant.html" not in found          # the worked example may show its code
+    write(tmp_path, "intro.html", "<h1>Title</h1><p>No answer here.</p>")
+    found = "\n".join(check(tmp_path))
+    assert "intro.html: no section 'Findings at a glance'" in found

@@ -1,4 +1,4 @@
-"""Chapter 'generic example' (issue 14): a second plant, not in the paper, on which band-limited
+"""Chapter 'generic example': a second plant, not in the paper, on which band-limited
 design matters, run through the whole FDSC pipeline with the public API only.
 
 The paper's introduction promises simulation results on "a generic and a common benchmark
@@ -497,5 +497,5 @@ def record_part() -> RecordPart:
             f"{p['FDSC'].best_gain:.3g}) and on {t['FDSC'].share:.0%} of the rho_t sweep "
             f"({t['FDSC'].best_gain:.3g}); with the dwell law on {p['FDSC (dwell)'].share:.0%} and "
             f"{t['FDSC (dwell)'].share:.0%}")
-    return RecordPart((entry("generic_example", "issue 14: a generic example (not in the paper)", None,
+    return RecordPart((entry("generic_example", "our addition: a generic example (not in the paper)", None,
                              recomputed, "new", note),))

@@ -436,5 +436,5 @@ def record_part():
     """
     parts = {name: monte_carlo(name) for name in EXAMPLES}
     note = " ".join(mc.pays() for mc in parts.values())
-    return RecordPart((entry("monte_carlo", "issue 14: random disturbances (not in the paper)", None,
+    return RecordPart((entry("monte_carlo", "our addition: random disturbances (not in the paper)", None,
                              {name: mc.to_record() for name, mc in parts.items()}, "new", note),))

@@ -25,6 +25,7 @@ from .data import (
 )
 from .gkyp_lemma import gain_band_table
 from .names import FDSC_IN_BAND, FIGURE_IDS, GAIN_BANDS, GAIN_ORDER
+from .prose import matrix_text
 from .results import RecordPart, entry, pick
 from .verdict import verdict
 
@@ -107,7 +108,7 @@ def controller_label(gain: str) -> str:
 
 
 def _fmt_K(K):
-    return np.array2string(np.asarray(K), precision=4, suppress_small=True)
+    return matrix_text(K, 4)
 
 
 # -- the gains recomputed ------------------------------------------------------------------------

@@ -13,7 +13,7 @@ from numbers import Integral, Real
 
 import numpy as np
 
-__all__ = ["num", "count", "times", "span", "pct", "glue_numbers"]
+__all__ = ["num", "count", "times", "span", "pct", "matrix_text", "glue_numbers"]
 
 _SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
 
@@ -176,6 +176,29 @@ def pct(share, digits=0):
     if not 0.0 <= v <= 1.0:
         raise ValueError(f"share must lie in [0, 1], but found {v!r}")
     return f"{100 * v:.{digits}f} %"
+
+
+def matrix_text(m, digits=4):
+    """A small matrix as the book prints it: rows separated by semicolons, entries by
+    :func:`fdsc.paper.prose.num` (no raw NumPy array in the book).
+
+    Parameters
+    ----------
+    m : (n, k) array_like
+    digits : int, optional
+        Significant digits of each entry.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> matrix_text([[1.0, -2.5e-11], [-2.5e-11, 0.5]])
+    '[1.000, −2.500 × 10⁻¹¹; −2.500 × 10⁻¹¹, 0.5000]'
+    """
+    return "[" + "; ".join(", ".join(num(float(v), digits) for v in row)
+                           for row in np.atleast_2d(np.asarray(m, dtype=float))) + "]"
 
 
 def glue_numbers(numbers, prefix=""):

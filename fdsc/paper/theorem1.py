@@ -22,7 +22,7 @@ from .data import (
     paper_modes,
     run_controller,
 )
-from .prose import count, num, pct
+from .prose import count, matrix_text, num, pct
 from .results import RecordPart, entry, pick
 
 __all__ = [
@@ -56,29 +56,6 @@ def _whole(x):
     """A count or a length as the prose prints it: whole numbers without decimals."""
     x = float(x)
     return count(int(x)) if x.is_integer() else num(x)
-
-
-def matrix_text(m, digits=4):
-    """A small matrix as the book prints it: rows separated by semicolons, entries by
-    :func:`fdsc.paper.prose.num` (no raw NumPy array in the book).
-
-    Parameters
-    ----------
-    m : (n, k) array_like
-    digits : int, optional
-        Significant digits of each entry.
-
-    Returns
-    -------
-    str
-
-    Examples
-    --------
-    >>> matrix_text([[1.0, -2.5e-11], [-2.5e-11, 0.5]])
-    '[1.000, −2.500 × 10⁻¹¹; −2.500 × 10⁻¹¹, 0.5000]'
-    """
-    return "[" + "; ".join(", ".join(num(float(v), digits) for v in row)
-                           for row in np.atleast_2d(np.asarray(m, dtype=float))) + "]"
 
 
 @dataclass(frozen=True)
