@@ -119,6 +119,22 @@ def test_page_renders_offline(page, name):
     assert raw == [], f"{name}: raw TeX in visible text: " + "; ".join(f"'{s}'" for s in raw[:3])
 
 
+def test_the_answer_is_on_the_first_screen(browser):
+    """At 1280×800 the landing page shows its findings heading without scrolling, and the sidebar
+    names the book's parts."""
+    context = browser.new_context(viewport={"width": 1280, "height": 800})
+    pg = context.new_page()
+    pg.goto((HTML / "intro.html").as_uri(), wait_until="load")
+    heading = pg.get_by_role("heading", name="Findings at a glance")
+    box = heading.bounding_box()
+    assert box is not None and 0 <= box["y"] and box["y"] + box["height"] <= 800, box
+    captions = pg.locator(".caption-text").all_inner_texts()
+    for part in ("I. The paper, reproduced", "II. Does FDSC pay?", "III. Repairs and extensions",
+                 "Appendices"):
+        assert any(part in c for c in captions), (part, captions)
+    context.close()
+
+
 def test_raw_tex_is_found_in_a_page_built_with_the_defect(page, tmp_path):
     mathjax = HTML / "_static" / "mathjax"
     if not mathjax.is_dir():

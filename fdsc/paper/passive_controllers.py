@@ -25,7 +25,6 @@ from .data import (
 )
 from .gkyp_lemma import gain_band_table
 from .names import FDSC_IN_BAND, FIGURE_IDS, GAIN_BANDS, GAIN_ORDER
-from .prose import matrix_text
 from .results import RecordPart, entry, pick
 from .verdict import verdict
 
@@ -108,7 +107,9 @@ def controller_label(gain: str) -> str:
 
 
 def _fmt_K(K):
-    return matrix_text(K, 4)
+    # four decimals, as the paper prints its gains (rows separated by semicolons, no raw array)
+    rows = np.atleast_2d(np.asarray(K, dtype=float))
+    return "[" + "; ".join(", ".join(f"{v:.4f}".replace("-", "−") for v in r) for r in rows) + "]"
 
 
 # -- the gains recomputed ------------------------------------------------------------------------

@@ -77,7 +77,8 @@ def test_gain_comparison_against_an_independent_computation(designs):
     # LF, MF and H∞ reproduce the printed gains to about their printed digits
     assert [cmp[n].verdict for n in ("K_f1", "K_f2", "K_e")] == ["close", "close", "close"]
     assert cmp["K_f1"].fastest_pole < -100  # high-gain design
-    assert cmp.rows()[0]["paper_K"].startswith("[[")
+    # the printed precision (four decimals), rows separated by semicolons: no raw array
+    assert cmp.rows()[0]["paper_K"] == "[0.1048, 15.0897; 0.0205, 2.9760]"
 
 
 def test_gain_comparison_record_entries(designs):
