@@ -27,6 +27,7 @@ from .data import (
     paper_gains,
     paper_modes,
 )
+from .prose import num
 from .results import RecordPart, entry
 
 __all__ = [
@@ -467,7 +468,7 @@ def record_part() -> RecordPart:
         f"where the two-mode FDSC reaches at best {best2:.3g}. The Remark 4 design "
         f"certifies gamma_MF = {cert.design.gammas[1]:.4g} (K_f2's MF peak {cert.mf_peak:.4g}) but "
         "its law sits in the HF mode most of the time; the certificate of the Q = I law is loose "
-        f"(gammas {np.array2string(cert.equal_q.gammas, precision=3)}).")
+        f"(gammas {', '.join(num(float(g)) for g in cert.equal_q.gammas)}).")
     return RecordPart((entry("three_mode", "Theorem 1 with I = 3 (K_f1, K_f2, K_f3), Sec. III-IV "
                              "(not in the paper)", None, rec, "new", note,
                              horizon=table.horizon, dt=table.dt),))
