@@ -47,7 +47,7 @@ HF_SIGMA = 10.0 * W_H
 #: The in-band mode of the FDSC design (paper Remark 4 minimizes its γ): the LF mode, whose
 #: advantage over H∞ is the one FDSC is there to keep.
 IN_BAND = 0
-#: Minimum dwell time of the well-posed law: three periods of the slowest HF tone (s).
+#: Minimum dwell time of the well-posed law: three periods at the HF band's edge, 3·2π/ϖ_h (s).
 DWELL = round(3 * 2 * math.pi / W_H, 3)
 #: Where random tones are drawn (rad/s), inside the bands.
 LF_TONES, HF_TONES = (0.3, W_L), (W_H, 4 * W_H)

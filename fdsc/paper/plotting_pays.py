@@ -3,19 +3,18 @@
 import numpy as np
 
 from .plotting import _axes
+from .style import STYLES, band_color, style
 
 __all__ = ["STYLE", "plot_stationary_baselines", "plot_family_baselines", "plot_mc_ratio", "plot_mc_cdf"]
 
-#: Line style of each controller of the comparisons (colour, marker, line style).
-STYLE = {"open loop": ("0.45", "o", ":"), "PassC-EF": ("tab:blue", "s", "-"),
-         "PassC-LF": ("tab:green", "^", "-"), "PassC-HF": ("tab:red", "v", "-"),
-         "HF best": ("tab:purple", "D", "--"), "FDSC": ("k", "x", "-"),
-         "FDSC (dwell)": ("tab:orange", "+", "--"), "FDSC (HF best)": ("tab:brown", "*", "-.")}
-_EXTRA = ("tab:cyan", "tab:olive", "tab:pink", "tab:gray")
+#: Line style of each controller of the comparisons (colour, marker, line style): the book's one
+#: style map (:data:`fdsc.paper.style.STYLES`).
+STYLE = STYLES
 
 
 def _style(name, k):
-    return STYLE.get(name, (_EXTRA[k % len(_EXTRA)], "o", "-"))
+    st = style(name, k)
+    return st["color"], st["marker"], st["linestyle"]
 
 
 def plot_stationary_baselines(result, ax=None):
@@ -33,7 +32,7 @@ def plot_stationary_baselines(result, ax=None):
     ax = _axes(ax, (7, 4))
     lf, hf = result.family("stationary")
     y = np.arange(len(result.names))
-    for off, s, color in ((-0.2, lf, "tab:green"), (0.2, hf, "tab:red")):
+    for off, s, color in ((-0.2, lf, band_color("LF")), (0.2, hf, band_color("HF"))):
         ax.barh(y + off, [s.energy[n] / s.input_energy for n in result.names], height=0.38, color=color,
                 label=f"{s.label} disturbance (paper eq. ({56 if s.label == 'LF' else 57}))")
     ax.set_yticks(y, result.names)
