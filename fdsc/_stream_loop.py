@@ -31,13 +31,16 @@ def _neumaier_add(s, c, b):
 
 
 def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
-               kind, seg_start, seg_nt, omega, amp, phase, Gr, Gi, Rre, Rim,
+               kind, seg_start, seg_nt, omega, amp, phase, Gr, Gi, Rre, Rim, xmax,
                u, G0, G1, cum_every, trace_every, dwell_edges, rparams, ring, ring_sum, istate,
                sums, share_steps, dwell_counts, cum, tr_lo, tr_hi, tr_share, x_out, info, shape):
     """One run (see the docstring of :mod:`fdsc.stream`). Writes every result into the output
     arguments.
 
-    ``sums`` = [∫zᵀz, ∫d², switches]; ``info`` = [diverged point or −1, final mode]. Points
+    ``sums`` = [∫zᵀz, ∫d², switches, ‖x‖∞ where the divergence monitor fired]; ``info`` =
+    [diverged point or −1, final mode, point where the monitor fired or −1]: the monitor
+    (:mod:`fdsc._divergence`) compares ``max_r |x_r|`` with ``xmax`` once per block of
+    :data:`_SUM_BLOCK` points and at the last point. Points
     are k = 0 … N−1; step k goes from point k to point k+1 and uses
     the mode chosen at point k and the disturbance segment that contains point k.
 
@@ -113,6 +116,8 @@ def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
     kblock = 0
     wgt = 1.0
     diverged = -1
+    grew = -1
+    xgrew = 0.0
     for k in range(N):
         k_done = k
         if kind == 0 and k == seg_start[s + 1]:
@@ -247,6 +252,15 @@ def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
             sd, cd = _neumaier_add(sd, cd, bd)
             bz = 0.0
             bd = 0.0
+            if grew < 0:
+                # the divergence monitor (fdsc._divergence), once per block
+                xa = 0.0
+                for r in range(n):
+                    if abs(x[r]) > xa:
+                        xa = abs(x[r])
+                if xa > xmax:
+                    grew = k
+                    xgrew = xa
         fz3 = fz2
         fz2 = fz1
         fz1 = fz
@@ -254,6 +268,14 @@ def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
         fd2 = fd1
         fd1 = fd
         if k == N - 1:
+            if grew < 0:
+                xa = 0.0
+                for r in range(n):
+                    if abs(x[r]) > xa:
+                        xa = abs(x[r])
+                if xa > xmax:
+                    grew = k
+                    xgrew = xa
             break
         # the exact step k → k + 1 in mode m: x_{k+1} = Φ x_k + Γ p_k (augmented system)
         if kind == 0:
@@ -307,10 +329,12 @@ def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
         sums[0] = dt / 3.0 * (sz_half + fz2) + dt * (5.0 * fz1 + 8.0 * fz2 - fz3) / 12.0
         sums[1] = dt / 3.0 * (sd_half + fd2) + dt * (5.0 * fd1 + 8.0 * fd2 - fd3) / 12.0
     sums[2] = switches
+    sums[3] = xgrew
     for r in range(n):
         x_out[r] = x[r]
     info[0] = diverged
     info[1] = prev
+    info[2] = grew
 
 
 

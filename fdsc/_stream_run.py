@@ -19,7 +19,7 @@ from .exceptions import UnstableRunWarning
 __all__ = []
 
 _INPUTS = ("N", "dt", "nm", "Phi", "C", "D", "Mt", "law", "sigma0", "x0", "kind",
-           "seg_start", "seg_nt", "omega", "amp", "phase", "Gr", "Gi", "Rre", "Rim")
+           "seg_start", "seg_nt", "omega", "amp", "phase", "Gr", "Gi", "Rre", "Rim", "xmax")
 
 
 def _run(preps, kernel, threads, closed_form=True, specialize=None):
@@ -163,14 +163,14 @@ def _loop_plan(preps, kernel, specialize=None):
     shape = _shape_tag(st, kernel, specialize)
     Cn, n, p, nm, nb = len(preps), dims["n"], dims["p"], dims["nm"], dims["nb"]
     q = n + p + 1
-    sums = np.zeros((Cn, 3))
+    sums = np.zeros((Cn, 4))
     share_steps = np.zeros((Cn, nm), dtype=np.int64)
     dwell_counts = np.zeros((Cn, nb - 1), dtype=np.int64)
     cum = np.zeros((int(st["cum_off"][-1]), 2))
     n_tr = int(st["tr_off"][-1])
     tr_lo, tr_hi, tr_share = np.zeros((n_tr, q)), np.zeros((n_tr, q)), np.zeros((n_tr, nm))
     x_out = np.zeros((Cn, n))
-    info = np.zeros((Cn, 2), dtype=np.int64)
+    info = np.zeros((Cn, 3), dtype=np.int64)
     args = [st[k] for k in _INPUTS]
     ring = np.zeros((int(st["ring_off"][-1]), nm))
     ring_sum = np.zeros((Cn, nm))
@@ -227,7 +227,9 @@ def _result(pr, c, st, sums, share_steps, dwell_counts, cum, tr_lo, tr_hi, tr_sh
         switches=int(sums[c, 2]), time_share=share_steps[c, :nm] / (N - 1),
         dwell_edges=edges, dwell_counts=dwell_counts[c, :edges.size - 1].copy(),
         x_final=x_out[c, :n].copy(), sigma_final=int(info[c, 1]), t_cum=t_cum, energy_cum=e_cum,
-        input_energy_cum=d_cum, trace=trace, diverged_at=None if diverged < 0 else diverged * dt)
+        input_energy_cum=d_cum, trace=trace, diverged_at=None if diverged < 0 else diverged * dt,
+        grew_at=None if info[c, 2] < 0 else int(info[c, 2]) * dt,
+        growth=None if info[c, 2] < 0 else float(sums[c, 3]) / pr["x_bound"])
 
 
 def _warn_unstable_modes(pr, res, where, stacklevel):

@@ -8,6 +8,7 @@ import math
 import numpy as np
 from scipy.linalg import expm
 
+from . import _divergence
 from ._modes import LAWS, _as_modes, _law_weights, _shared_input
 from ._simulate_kernel import PHASOR_BLOCK, break_index, check_resolved, rotations
 from ._stream_types import Case
@@ -83,6 +84,8 @@ def _prepare(case, where, cumulative_every, trace_every, dwell_edges):
     out = dict(N=N, dt=dt, nm=nm, n=n, p=p, Phi=Phi, A=A, B=B, C=C, D=D, W=W, law=_LAW_CODE[law],
                sigma0=sigma0, x0=x0, horizon=steps * dt, modes=modes, rparams=rparams,
                ring_len=ring.shape[0])
+    # the divergence monitor's bound (fdsc._divergence); off for one mode, which cannot exceed it
+    out["x_bound"] = _divergence.state_bound(A, B[:, None], x0, case.d) if nm > 1 else np.inf
     if isinstance(case.d, Sampled):
         if abs(case.d.dt - dt) > 1e-12 * dt:
             raise ValueError(f"{where}d is sampled every {case.d.dt!r} s but the run steps by "
@@ -257,7 +260,8 @@ def _stack(preps):
               cum_every=np.array([q["cum_every"] for q in preps], dtype=np.int64),
               trace_every=np.array([q["trace_every"] for q in preps], dtype=np.int64),
               dwell_edges=np.full((C, nb), np.iinfo(np.int64).max, dtype=np.int64),
-              rparams=np.zeros((C, 4)))
+              rparams=np.zeros((C, 4)),
+              xmax=np.array([_divergence.SAFETY * q["x_bound"] for q in preps]))
     u_off, cum_off, tr_off = [0], [0], [0]
     for c, q in enumerate(preps):
         qn, qm, qp = q["n"], q["nm"], q["p"]

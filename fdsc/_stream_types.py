@@ -132,6 +132,14 @@ class StreamResult:
         Decimated traces, if asked for.
     diverged_at : float or None
         Time (s) at which the state overflowed, None if it stayed finite.
+    grew_at : float or None
+        Time (s) at which the divergence monitor (:mod:`fdsc._divergence`) flagged the run: its
+        state exceeded 10⁶ times the largest state any of its modes reaches alone from the same
+        x0 under the same disturbance (checked every 1024 steps and at the last point). None if
+        it never did; a run of one mode never is. The run's other numbers are still those of
+        the (diverging) run.
+    growth : float or None
+        ``max_r |x_r| / R`` at ``grew_at`` (R the modes' bound; > 10⁶), None if not flagged.
     """
 
     horizon: float
@@ -149,6 +157,8 @@ class StreamResult:
     input_energy_cum: np.ndarray
     trace: Trace | None = None
     diverged_at: float | None = None
+    grew_at: float | None = None
+    growth: float | None = None
 
     @property
     def n_steps(self) -> int:
@@ -242,11 +252,13 @@ class BatchResult:
     ----------
     cases : list of Case
     energy, input_energy : (C,) ndarray
-        ``∫ zᵀz`` and ``∫ d²`` of every case (``inf``/``nan`` where it diverged).
+        ``∫ zᵀz`` and ``∫ d²`` of every case (``inf``/``nan`` where the state overflowed).
     switches : (C,) int ndarray
     time_share : (C, I_max) ndarray
         Zero for modes a case does not have.
     diverged : (C,) bool ndarray
+        True where the state overflowed (``diverged_at``) or the divergence monitor flagged the
+        run (``grew_at``; its energy is finite, but the run diverges).
     """
 
     def __init__(self, cases, results):
@@ -258,7 +270,8 @@ class BatchResult:
         width = max(r.time_share.size for r in results)
         self.time_share = np.array([np.pad(r.time_share, (0, width - r.time_share.size))
                                     for r in results])
-        self.diverged = np.array([r.diverged_at is not None for r in results])
+        self.diverged = np.array([r.diverged_at is not None or r.grew_at is not None
+                                  for r in results])
 
     def __len__(self):
         return len(self._results)

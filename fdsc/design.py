@@ -311,6 +311,12 @@ class FDSC:
         ------
         ValueError, TypeError, SingularFrequencyError, MemoryLimitError, UnstableError
             As :func:`~fdsc.simulate.simulate` raises them.
+
+        Warns
+        -----
+        UnstableRunWarning
+            As :func:`~fdsc.simulate.simulate` warns: in particular if the divergence monitor
+            (:mod:`fdsc._divergence`) finds the switched run diverging.
         """
         return simulate(list(self.modes), d, t, x0=x0, law_bands=list(self.bands),
                         law_Q=list(self.Q), law=law, sigma0=sigma0, rule=rule, kernel=kernel,

@@ -24,6 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.linalg import expm
 
+from . import _divergence
 from ._modes import LAWS, _as_modes, _law_weights, _shared_input
 from ._simulate_kernel import PHASOR_BLOCK, _samples, _segments, check_resolved, tone_tables
 from ._simulate_kernel import kernel as _compiled_kernel
@@ -300,6 +301,20 @@ def envelope(t: ArrayLike, y: ArrayLike, every: int) -> tuple[np.ndarray, np.nda
     return t[starts], np.minimum.reduceat(y, starts, axis=0), np.maximum.reduceat(y, starts, axis=0)
 
 
+def _monitor(x, t, A, B, x0, d, where):
+    """The divergence monitor (:mod:`fdsc._divergence`) on a whole trajectory: warn at the first
+    point whose largest state component exceeds SAFETY times the modes' bound."""
+    if len(A) < 2:
+        return      # one mode: its state never exceeds the bound (see fdsc._divergence)
+    limit = _divergence.threshold(A, B, x0, d)
+    if not np.max(np.abs(x)) > limit:
+        return
+    k = int(np.argmax(np.max(np.abs(x), axis=1) > limit))
+    bound = limit / _divergence.SAFETY
+    warnings.warn(_divergence.message(where, float(t[k]), float(np.linalg.norm(x[k])) / bound, bound),
+                  UnstableRunWarning, stacklevel=3)
+
+
 def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
              x0: ArrayLike | None = None, law_bands: list | None = None, law_Q: list | None = None,
              law: str = "previous", sigma0: int = 0, rule: SwitchRule = PRINTED,
@@ -366,7 +381,10 @@ def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
     Warns
     -----
     UnstableRunWarning
-        If a mode is not Hurwitz but the run stayed finite (its energies grow with the horizon).
+        If a mode is not Hurwitz but the run stayed finite (its energies grow with the horizon);
+        or if the divergence monitor flags a switched run (:mod:`fdsc._divergence`: a state
+        exceeds 10⁶ times the largest any of its modes reaches alone from the same x0 under the
+        same disturbance; the message names the time and the growth).
 
     Notes
     -----
@@ -432,6 +450,7 @@ def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
         k = int(np.argmin(finite))
         raise UnstableError(f"simulate: the state overflowed at t = {t[k]:g} s (step {k}); the loop "
                             "diverges and no finite energy summarizes it")
+    _monitor(x, t, A, B, x0, d, "simulate: ")
     for i, m in enumerate(modes):
         ev = np.linalg.eigvals(m.A)
         if ev.real.max() >= 0 and np.any(sigma == i):

@@ -61,6 +61,7 @@ import numba
 import numpy as np
 from numpy.typing import ArrayLike
 
+from . import _divergence
 from ._stream_run import UNROLL_MAX, UNROLL_MIN_STEPS, _run, _warn_unstable_modes
 from ._stream_setup import PHASOR_BLOCK, _prepare
 from ._stream_types import BatchResult, Case, StreamResult, Trace
@@ -160,7 +161,10 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
     Warns
     -----
     UnstableRunWarning
-        If a mode that is not Hurwitz is active but the run stayed finite.
+        If a mode that is not Hurwitz is active but the run stayed finite; or if the divergence
+        monitor flags the run (:mod:`fdsc._divergence`: the state exceeds 10⁶ times the largest
+        state any of its modes reaches alone from the same x0 under the same disturbance; the
+        time and the growth are in the message and in ``grew_at`` and ``growth``).
 
     Notes
     -----
@@ -194,6 +198,9 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
     if res.diverged_at is not None:
         raise UnstableError(f"simulate_stream: the state overflowed at t = {res.diverged_at:g} s; "
                             "the loop diverges and no finite energy summarizes it")
+    if res.grew_at is not None:
+        warnings.warn(_divergence.message("simulate_stream: ", res.grew_at, res.growth,
+                                          pr["x_bound"]), UnstableRunWarning, stacklevel=2)
     _warn_unstable_modes(pr, res, "simulate_stream: ", 3)
     return res
 
@@ -227,8 +234,9 @@ def simulate_batch(cases, *, cumulative_every: float | None = None, trace_every:
     Returns
     -------
     BatchResult
-        Cases that diverged have ``energy = inf`` and ``diverged`` set; they are reported by a
-        warning, not by an exception, so that the other cases are kept.
+        Cases that diverged have ``diverged`` set (and ``energy = inf`` if the state
+        overflowed); they are reported by a warning, not by an exception, so that the other
+        cases are kept.
 
     Raises
     ------
@@ -239,7 +247,8 @@ def simulate_batch(cases, *, cumulative_every: float | None = None, trace_every:
     Warns
     -----
     UnstableRunWarning
-        For diverged cases (listed), and for a non-Hurwitz mode active in a finite run.
+        For diverged cases (listed: the state overflowed, or the divergence monitor flagged the
+        run, see :func:`simulate_stream`), and for a non-Hurwitz mode active in a finite run.
 
     Examples
     --------
@@ -263,10 +272,20 @@ def simulate_batch(cases, *, cumulative_every: float | None = None, trace_every:
              for i, c in enumerate(cases)]
     results = _run(preps, kernel, threads, closed_form, specialize)
     batch = BatchResult(cases, results)
-    if batch.diverged.any():
-        bad = np.flatnonzero(batch.diverged)
+    over = np.array([r.diverged_at is not None for r in results])
+    if over.any():
+        bad = np.flatnonzero(over)
         warnings.warn(f"simulate_batch: {bad.size} of {len(cases)} cases diverged (the state "
                       f"overflowed): cases {bad.tolist()[:20]}; their energy is inf",
+                      UnstableRunWarning, stacklevel=2)
+    grew = np.flatnonzero(batch.diverged & ~over)
+    if grew.size:
+        first = results[grew[0]]
+        warnings.warn(f"simulate_batch: {grew.size} of {len(cases)} cases diverge (flagged by the "
+                      f"divergence monitor, their energies are finite but meaningless): cases "
+                      f"{grew.tolist()[:20]}; "
+                      + _divergence.message(f"cases[{grew[0]}]: ", first.grew_at, first.growth,
+                                            preps[grew[0]]["x_bound"]),
                       UnstableRunWarning, stacklevel=2)
     for pr, res, i in zip(preps, results, range(len(preps)), strict=True):
         if res.diverged_at is None:
