@@ -1,8 +1,8 @@
-"""Chapter 'passive_controllers', continued: the four bounds printed beside the gains of Sec. IV,
+"""Appendix 'printed_bounds', continued: the four bounds printed beside the gains of Sec. IV,
 searched for among time-domain quantities of the simulations of Sec. IV.
 
-The frequency-domain candidates (:func:`fdsc.paper.passive_controllers.bound_candidates`) reproduce
-only the bound printed beside K_f2. Sec. IV also computes time-domain quantities (paper Fig. 6
+The quantity the text states (σ_max over the gain's band) reproduces only the bound printed
+beside K_f2 (:mod:`fdsc.paper.printed_bounds`). Sec. IV also computes time-domain quantities (paper Fig. 6
 plots the running L2-induced ratio ``√(∫₀ᵗ zᵀz / ∫₀ᵗ d²)``), so a printed bound may be one of
 them, read at the end of some run. This module runs every printed gain under every test signal
 of Sec. IV in one streamed batch and compares, for each gain, every quantity below with the
@@ -14,13 +14,17 @@ bound printed beside it:
 * the limits of both as T → ∞ for the sums of sinusoids (closed form,
   :func:`fdsc.frequency.steady_state_gain`);
 * the peak gain of each output alone, ``max |z_i(t)| / max |d(t)|`` over the samples in
-  ``[0, T)``, at the same horizons (from min/max traces, so no full trace is kept).
+  ``[0, T)``, at the same horizons (from min/max traces, so no full trace is kept), named
+  ``"peak gain of <output>"`` (:func:`output_label`).
 
-A quantity picked after the fact as the nearest of many can be at best a match (equal to the
-printed precision; :data:`fdsc.paper.verdict.VERDICT_RULES`), so a bound is ``match`` if some
-candidate equals it to its printed precision (every such hit is listed) and ``not reproducible``
-otherwise. The first time each running ratio crosses the printed value is recorded for
-information only: a continuous curve that sweeps through a range crosses every value in it.
+A quantity picked after the fact as the nearest of several hundred is no evidence of what the
+paper computed, even when it equals the printed digits: the module gives no verdict. It reports
+the hits (quantities equal to the printed value to its precision), the nearest quantities, how
+many lie within 1 % of the printed value and how many hits that many would give by chance
+(:attr:`BoundMatch.chance_hits`); the one verdict of each bound is that of the quantity the text
+states (:mod:`fdsc.paper.printed_bounds`). The first time each running ratio crosses the printed
+value is recorded for information only: a continuous curve that sweeps through a range crosses
+every value in it.
 """
 
 import math
@@ -44,8 +48,9 @@ from .data import (
     piecewise_disturbance,
 )
 from .names import GAIN_ORDER
-from .results import RecordPart, entry, pick
-from .verdict import VERDICT_CLOSE_RTOL, verdict, worst_verdict
+from .prose import num
+from .results import pick
+from .verdict import VERDICT_CLOSE_RTOL, verdict
 
 __all__ = [
     "ROUND_HORIZONS",
@@ -60,6 +65,7 @@ __all__ = [
     "STEADY_STATE",
     "SearchSignal",
     "search_signals",
+    "output_label",
     "TimeDomainCandidate",
     "BoundMatch",
     "match_bound",
@@ -124,14 +130,43 @@ def search_signals() -> tuple:
     Examples
     --------
     >>> [(s.label, s.run) for s in search_signals()][-1]
-    ('piecewise, rho_t = 0.5', 1250.0)
+    ('piecewise, ρ_t = 0.5', 1250.0)
     """
     out = [SearchSignal("LF", lf_disturbance(), STATIONARY_RUN),
            SearchSignal("HF", hf_disturbance(), STATIONARY_RUN)]
-    out += [SearchSignal(f"mixed, rho_p = {r:g}", mixed_disturbance(r), MIXED_RUN) for r in RHO_P_GRID]
-    out += [SearchSignal(f"piecewise, rho_t = {r:g}", piecewise_disturbance(PIECEWISE_T, r, RHO_P_STAR),
+    out += [SearchSignal(f"mixed, ρ_p = {r:g}", mixed_disturbance(r), MIXED_RUN) for r in RHO_P_GRID]
+    out += [SearchSignal(f"piecewise, ρ_t = {r:g}", piecewise_disturbance(PIECEWISE_T, r, RHO_P_STAR),
                          (2 + r) * PIECEWISE_T) for r in RHO_T_GRID]
     return tuple(out)
+
+
+def output_label(name: str) -> str:
+    """An output's name as the book prints it: ``"2 delta_E"`` → ``"2δ_E"``.
+
+    Parameters
+    ----------
+    name : str
+        The output's name in the paper's data.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> output_label("2 delta_PTV"), output_label("4 q")
+    ('2δ_PTV', '4q')
+    """
+    return name.replace("delta", "δ").replace(" ", "")
+
+
+def _seconds(h):
+    return num(int(h)) if float(h).is_integer() else num(float(h))
+
+
+def _signal_words(label):
+    kind, _, parameter = label.partition(", ")
+    return f"the {kind} disturbance" + (f" ({parameter})" if parameter else "")
 
 
 @dataclass(frozen=True)
@@ -163,15 +198,22 @@ class TimeDomainCandidate:
         """The horizon in s, or ``"steady state"``."""
         return "steady state" if math.isinf(self.horizon) else self.horizon
 
-    def describe(self) -> str:
-        """The candidate in words, e.g. ``"L2 ratio under HF at T = 100 s (0.17135)"``.
+    def describe(self, *, value: bool = True) -> str:
+        """The candidate in words, e.g. ``"L2 ratio under the HF disturbance over T = 100 s
+        (0.17135)"``.
+
+        Parameters
+        ----------
+        value : bool, optional
+            Append the value (five significant digits).
 
         Returns
         -------
         str
         """
-        when = "in steady state" if math.isinf(self.horizon) else f"at T = {self.horizon:g} s"
-        return f"{self.quantity} under {self.signal} {when} ({self.value:.5f})"
+        when = "in steady state" if math.isinf(self.horizon) else f"over T = {_seconds(self.horizon)} s"
+        text = f"{self.quantity} under {_signal_words(self.signal)} {when}"
+        return f"{text} ({num(self.value, 5)})" if value else text
 
     def to_dict(self) -> dict:
         """``{signal, quantity, horizon_s, value}`` with plain values (for the record).
@@ -198,8 +240,6 @@ class BoundMatch:
         The candidates nearest to ``paper``, nearest first.
     hits : tuple of TimeDomainCandidate
         Every candidate equal to ``paper`` to its printed precision, in the order given.
-    verdict : str
-        ``"match"`` if there is a hit, else ``"not reproducible"``.
     n_candidates : int
         Candidates compared.
     n_within_close : int
@@ -212,7 +252,6 @@ class BoundMatch:
     paper: float
     nearest: tuple
     hits: tuple
-    verdict: str
     n_candidates: int
     n_within_close: int
     decimals: int
@@ -221,6 +260,31 @@ class BoundMatch:
     def best(self) -> TimeDomainCandidate:
         """The nearest candidate."""
         return self.nearest[0]
+
+    @property
+    def shown(self) -> tuple:
+        """The nearest candidates, then the hits not among them."""
+        return self.nearest + tuple(h for h in self.hits if h not in self.nearest)
+
+    @property
+    def hit_values(self) -> tuple:
+        """The distinct values among the hits (signals that agree up to T give one number)."""
+        return tuple(dict.fromkeys(h.value for h in self.hits))
+
+    @property
+    def chance_hits(self) -> float:
+        """Hits to expect by chance: the candidates within 1 % of ``paper``, times the width of
+        the printed digits' window (one unit of the last decimal) over the width of the 1 %
+        window (2 % of ``paper``), i.e. as if the candidates near the printed value were spread
+        evenly over that window.
+
+        Examples
+        --------
+        >>> m = BoundMatch("K", 0.25, (), (), 100, 50, 4)
+        >>> round(m.chance_hits, 6)     # 50 candidates in a window 50 printed units wide
+        1.0
+        """
+        return self.n_within_close * 10.0 ** (-self.decimals) / (2 * VERDICT_CLOSE_RTOL * self.paper)
 
     def rows(self) -> list:
         """The nearest candidates, then the hits not among them: ``signal, quantity, horizon,
@@ -231,10 +295,9 @@ class BoundMatch:
         list of dict
             For :func:`fdsc.paper.report.html_table`.
         """
-        shown = self.nearest + tuple(h for h in self.hits if h not in self.nearest)
         return [{"signal": c.signal, "quantity": c.quantity, "horizon": c.horizon_label,
                  "value": c.value, "abs_diff": abs(c.value - self.paper),
-                 "hit": "yes" if c in self.hits else ""} for c in shown]
+                 "hit": "yes" if c in self.hits else ""} for c in self.shown]
 
 
 def match_bound(gain: str, paper: float, candidates, *, decimals: int = 4, n_nearest: int = 5) -> BoundMatch:
@@ -269,8 +332,8 @@ def match_bound(gain: str, paper: float, candidates, *, decimals: int = 4, n_nea
     --------
     >>> c = [TimeDomainCandidate("K", "HF", L2_RATIO, T, v) for T, v in ((1.0, 0.5), (2.0, 0.34426))]
     >>> m = match_bound("K", 0.3443, c)
-    >>> m.verdict, m.best.horizon, len(m.hits)
-    ('match', 2.0, 1)
+    >>> m.best.horizon, len(m.hits)
+    (2.0, 1)
     """
     paper = as_positive("paper", paper)
     decimals, n_nearest = as_count("decimals", decimals, 0), as_count("n_nearest", n_nearest)
@@ -288,7 +351,7 @@ def match_bound(gain: str, paper: float, candidates, *, decimals: int = 4, n_nea
     hits = tuple(c for c in candidates if verdict(paper, c.value, decimals, after_the_fact=True) == "match")
     near = sum(d <= VERDICT_CLOSE_RTOL * paper for d in diffs)
     return BoundMatch(gain, paper, tuple(candidates[i] for i in order[:n_nearest]), hits,
-                      "match" if hits else "not reproducible", len(candidates), near, decimals)
+                      len(candidates), near, decimals)
 
 
 def first_crossing(t, curve, level: float) -> float:
@@ -419,7 +482,8 @@ class TimeDomainBoundSearch:
 
     def rows(self) -> list:
         """One row per bound: ``gain, paper, signal, quantity, horizon, value, abs_diff, hits,
-        verdict`` of the nearest candidate.
+        within_1pct, chance_hits`` (the nearest candidate, the number of hits, of candidates
+        within 1 % and of hits to expect by chance).
 
         Returns
         -------
@@ -427,7 +491,7 @@ class TimeDomainBoundSearch:
             For :func:`fdsc.paper.report.html_table`.
         """
         return [{"gain": b.gain, "paper": b.paper, **b.rows()[0], "hits": len(b.hits),
-                 "within_1pct": b.n_within_close, "verdict": b.verdict} for b in self.bounds]
+                 "within_1pct": b.n_within_close, "chance_hits": b.chance_hits} for b in self.bounds]
 
     def crossing_rows(self, gain: str | None = None) -> list:
         """The running ratios that reach the printed bound: ``gain, signal, quantity, t``.
@@ -444,38 +508,39 @@ class TimeDomainBoundSearch:
         return [vars(c).copy() for c in self.crossings
                 if math.isfinite(c.t) and gain in (None, c.gain)]
 
-    def to_record(self) -> RecordPart:
-        """Record entry ``bound_time_domain``.
+    def settings(self) -> dict:
+        """What the search ran: ``signals`` (``{label: run in s}``), ``horizons_s`` (the round
+        horizons used), ``quantities`` and ``dt_s``.
 
         Returns
         -------
-        RecordPart
+        dict
         """
-        recomputed = {b.gain: {**b.best.to_dict(), "abs_diff": abs(float(b.best.value) - b.paper),
-                               "verdict": b.verdict, "hits": [h.to_dict() for h in b.hits]}
-                      for b in self.bounds}
-        tried = self.tried
-        found = "; ".join(f"{b.gain} {b.verdict} (" + (", ".join(h.describe() for h in b.hits) if b.hits
-                                                       else f"nearest {b.best.describe()}") + ")"
-                          for b in self.bounds)
-        note = (f"Tried {tried['candidates_per_bound']} time-domain quantities per printed gain (L2 and "
-                f"energy ratios from rest at round horizons of {tried['round_horizons_s'][0]:g} to "
-                f"{tried['round_horizons_s'][-1]:g} s and their steady-state limits, peak gain of each "
-                f"output, under the {tried['signals']} test signals of Sec. IV), a hit being equal to "
-                f"the printed bound to its precision and picked after the fact among that many: {found}. "
-                "The first crossings are for information only: a continuous curve that sweeps through "
-                "a range crosses every value in it.")
-        crossings = {b.gain: {f"{c['quantity']}, {c['signal']}": float(c["t"])
-                              for c in self.crossing_rows(b.gain)} for b in self.bounds}
-        return RecordPart((entry(
-            "bound_time_domain",
-            "Sec. IV, the four bounds printed beside the gains; time-domain quantities of Sec. IV",
-            {b.gain: b.paper for b in self.bounds}, recomputed,
-            worst_verdict(b.verdict for b in self.bounds), note,
-            tried={**tried, "signal_runs_s": {k: float(v) for k, v in self.signals.items()},
-                   "quantity_names": list(self.quantities), "dt_s": self.dt},
-            within_1pct={b.gain: int(b.n_within_close) for b in self.bounds},
-            first_crossing_s=crossings),))
+        return {"signals": {k: float(v) for k, v in self.signals.items()},
+                "horizons_s": self.tried["round_horizons_s"], "quantities": list(self.quantities),
+                "dt_s": self.dt}
+
+    def readings(self, gain: str) -> dict:
+        """The search's readings of one printed bound, as plain values (for its record entry).
+
+        Parameters
+        ----------
+        gain : str
+            The printed gain.
+
+        Returns
+        -------
+        dict
+            ``nearest`` and ``hits`` (each ``{signal, quantity, horizon_s, value}``),
+            ``searched`` (quantities per bound), ``within_1pct``, ``chance_hits`` and
+            ``first_crossings_s`` (``{"<quantity>, <signal>": t}``, for information only).
+        """
+        b = self[gain]
+        return {"nearest": b.best.to_dict(), "hits": [h.to_dict() for h in b.hits],
+                "searched": int(b.n_candidates), "within_1pct": int(b.n_within_close),
+                "chance_hits": float(b.chance_hits),
+                "first_crossings_s": {f"{c['quantity']}, {c['signal']}": float(c["t"])
+                                      for c in self.crossing_rows(gain)}}
 
 
 def _check_grid(name, seconds, step, what):
@@ -528,8 +593,8 @@ def time_domain_bound_search(horizons: tuple = ROUND_HORIZONS, *, dt: float = ST
     Examples
     --------
     >>> s = time_domain_bound_search((1.0, 2.0))
-    >>> s.tried["candidates_per_bound"], s["K_e"].verdict    # 9 signals x 2 horizons x 5, 7 x 2
-    (104, 'not reproducible')
+    >>> s.tried["candidates_per_bound"], s["K_e"].hits    # 9 signals x 2 horizons x 5, 7 x 2
+    (104, ())
     """
     horizons = tuple(sorted({float(as_positive("horizons", h)) for h in horizons}))
     for h in horizons:
@@ -556,7 +621,7 @@ def time_domain_bound_search(horizons: tuple = ROUND_HORIZONS, *, dt: float = ST
             peak = zmax[:nb].max(axis=0) / dmax[:nb].max()
             cands[g] += [TimeDomainCandidate(g, label, L2_RATIO, T, float(ratio[k])),
                          TimeDomainCandidate(g, label, ENERGY_RATIO, T, float(ratio[k] ** 2))]
-            cands[g] += [TimeDomainCandidate(g, label, f"peak gain of {name}", T, float(p))
+            cands[g] += [TimeDomainCandidate(g, label, f"peak gain of {output_label(name)}", T, float(p))
                          for name, p in zip(outputs, peak, strict=True)]
         crossings += [Crossing(g, label, L2_RATIO, first_crossing(t, ratio, printed[g])),
                       Crossing(g, label, ENERGY_RATIO, first_crossing(t, ratio**2, printed[g]))]

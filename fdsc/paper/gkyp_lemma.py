@@ -1,5 +1,6 @@
-"""Chapter 'gkyp_lemma': Lemma 1 (paper eq. (7)) on the printed gains, the printed bounds, and the
-γ versus γ² slip of statement (2) (paper eq. (8)) and of (P.1), (P.2) and paper Remark 5.
+"""Chapter 'gkyp_lemma': Lemma 1 (paper eq. (7)) on the printed gains against a frequency sweep,
+and the γ versus γ² slip of statement (2) (paper eq. (8)) and of (P.1), (P.2) and paper Remark 5.
+The bounds printed beside the gains are judged once, in :mod:`fdsc.paper.printed_bounds`.
 """
 
 from dataclasses import dataclass
@@ -19,17 +20,14 @@ from .data import (
     paper_gains,
 )
 from .names import BAND_ORDER, GAIN_ORDER
+from .prose import count, num
 from .results import RecordPart, entry, pick
-from .verdict import verdict
 
 __all__ = [
     "record_part",
     "GainBandPeak",
     "GainBandTable",
     "gain_band_table",
-    "PrintedBound",
-    "PrintedBounds",
-    "printed_bounds",
     "WindowedTone",
     "windowed_tone_ratio",
     "ToneCheck",
@@ -90,6 +88,16 @@ class GainBandPeak:
     def fastest_pole(self) -> float:
         """Smallest real part of the closed-loop poles."""
         return float(np.min(np.real(self.poles)))
+
+
+#: The paper's names of the ranges.
+_OMEGA = {"LF": "Ω_1", "MF": "Ω_2", "HF": "Ω_3", "EF": "Ω_e"}
+
+
+def _exact(x):
+    """A chosen parameter printed with just the digits it has (0.5, not 0.500)."""
+    digits = f"{x:g}".replace(".", "").replace("-", "").lstrip("0")
+    return num(float(x), max(1, len(digits)))
 
 
 def _paper_bounds():
@@ -179,31 +187,79 @@ class GainBandTable:
         """Seconds of all solves together."""
         return sum(p.solve_time for p in self.pairs)
 
+    def solver_short(self) -> tuple:
+        """The pairs whose solve stopped short of the solver's full accuracy (accepted only
+        because their certificate passes the check after the solve)."""
+        return tuple(p for p in self.pairs if p.status != "optimal")
+
+    def display_rows(self) -> list:
+        """One row per pair, formatted for the book: ``gain, band, peak, omega, lmi_gamma,
+        rel_diff, max_eig``.
+
+        Returns
+        -------
+        list of dict
+        """
+        return [{"gain": p.gain, "band": p.band, "peak": num(p.peak, 6), "omega": num(p.omega_peak),
+                 "lmi_gamma": num(p.lmi_gamma, 6), "rel_diff": num(p.rel_diff, 2),
+                 "max_eig": num(p.max_eig, 2)} for p in self.pairs]
+
+    def prose(self) -> dict:
+        """The numbers the chapter quotes (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: ``n_pairs``, ``worst_rel_diff``, ``max_max_eig``, ``n_short`` and
+            ``short_bands`` (solves short of full accuracy and their bands), ``kf3_slow_pole``
+            (K_f3's slowest pole), ``fast_pole_lo`` and ``fast_pole_hi`` (fastest poles of the
+            other three loops), and ``peak_<gain>_<band>``, ``lmi_<gain>_<band>``.
+        """
+        fast = [p.fastest_pole for p in self.pairs if p.gain != "K_f3" and p.band == "EF"]
+        short = self.solver_short()
+        out = {"n_pairs": count(len(self.pairs)), "worst_rel_diff": num(self.worst_rel_diff, 2),
+               "max_max_eig": num(self.max_max_eig, 2), "n_short": count(len(short)),
+               "short_bands": " and ".join(dict.fromkeys(p.band for p in short)) or "none",
+               "kf3_slow_pole": num(next(p for p in self.pairs if p.gain == "K_f3").slowest_pole, 4),
+               "fast_pole_lo": num(min(fast)), "fast_pole_hi": num(max(fast))}
+        for p in self.pairs:
+            out |= {f"peak_{p.gain}_{p.band}": num(p.peak, 4), f"lmi_{p.gain}_{p.band}": num(p.lmi_gamma, 4)}
+        return out
+
     def to_record(self) -> RecordPart:
         """Record entries ``sigma_peak`` (band peaks of σ_max of the printed gains) and
-        ``lemma1_gamma`` (Lemma 1's certified γ for the same pairs); both new: the printed bounds
-        are judged once, in the entries ``bound_f1`` … ``bound_e``.
+        ``lemma1_gamma`` (Lemma 1's certified γ for the same pairs); both ``new`` (the paper
+        prints neither table): the printed bounds are judged once, in the entries ``bound_f1``
+        … ``bound_e`` (:mod:`fdsc.paper.printed_bounds`).
 
         Returns
         -------
         RecordPart
         """
-        bounds = printed_bounds(self).bounds
-        ratios = ", ".join(f"{b.gain} {b.paper}/{b.peak:.4f}" for b in bounds)
+        ctrl = paper_data("controllers")
+        beside = "; ".join(f"{g} {num(self.pair(g, ctrl[g]['band']).peak, 4)} on "
+                           f"{_OMEGA[ctrl[g]['band']]} (printed bound {ctrl[g]['bound']})"
+                           for g in GAIN_ORDER)
+        where = ("appendix 'The printed bounds', which gives each printed bound one verdict and "
+                 "every reading tried")
         return RecordPart((
             entry("sigma_peak", "Sec. IV, the printed gains K_f1, K_f2, K_f3, K_e; paper Fig. 3",
                   None, self.by_gain_band("peak"), "new",
-                  "sup of sigma_max(G(jw)) over each band (grid + local refinement, tail bound "
-                  "for HF/EF) for the printed gains; in-band, beside the printed bounds: " + ratios +
-                  ". Each printed bound has one verdict, in its own entry (the printed bounds "
-                  "appendix), with every reading tried.", omega_peak=self.by_gain_band("omega_peak"),
-                  printed_bounds=_paper_bounds()),
-            entry("lemma1_gamma", "Lemma 1 (eq. gKYP_LMI) applied to the printed gains",
+                  f"Band peak of σ_max(G(jω)) for the closed loop of each printed gain over each "
+                  f"range (a dense sweep refined locally, with a bound on the tail for HF and the "
+                  f"entire range), {count(len(self.pairs))} numbers the paper does not print. For "
+                  f"each gain's own range: {beside}. These peaks are the quantity the printed "
+                  f"bounds state; their verdicts are given once, in the {where}.",
+                  omega_peak=self.by_gain_band("omega_peak"), printed_bounds=_paper_bounds()),
+            entry("lemma1_gamma", "Lemma 1 (paper eq. (7)) applied to the printed gains",
                   None, self.by_gain_band("lmi_gamma"), "new",
-                  f"smallest gamma certified by the gKYP LMI (cvxpy + Clarabel, real embedding "
-                  f"for MF); equals the swept band peak within {self.worst_rel_diff:.1e} relative "
-                  f"on all {len(self.pairs)} gain/band pairs, so Lemma 1 is lossless here. Lemma 1's "
-                  "value is one of the readings of each printed bound (the printed bounds appendix).",
+                  f"Smallest γ certified by the LMI of Lemma 1 for each printed gain and range "
+                  f"(complex MF data posed through the real embedding). It equals the swept band "
+                  f"peak within {num(self.worst_rel_diff, 2)} relative on all "
+                  f"{count(len(self.pairs))} pairs, and every certificate's LMI is negative "
+                  f"definite when rebuilt after the solve (largest eigenvalue "
+                  f"{num(self.max_max_eig, 2)}): Lemma 1 is lossless here. It is one reading of "
+                  f"each printed bound, judged in the {where}.",
                   max_eig=self.by_gain_band("max_eig"), status=self.by_gain_band("status"),
                   printed_bounds=_paper_bounds()),
         ))
@@ -242,96 +298,6 @@ def gain_band_table(gains: dict | None = None, bands: dict | None = None) -> Gai
                                       (cert.gamma - pk.gamma) / pk.gamma, cert.max_eig,
                                       cert.status, cert.solve_time, cl.poles()))
     return GainBandTable(tuple(pairs))
-
-
-@dataclass(frozen=True)
-class PrintedBound:
-    """A bound printed in Sec. IV beside the in-band peak of its gain.
-
-    Parameters
-    ----------
-    gain : str
-        Name of the printed gain.
-    band : str
-        The band it was designed for.
-    paper : float
-        The printed bound.
-    peak : float
-        The in-band peak of σ_max for the printed gain.
-    lmi_gamma : float
-        Lemma 1's γ for the same pair.
-    ratio : float
-        ``paper / peak``.
-    verdict : str
-        Of ``peak`` against ``paper`` (:func:`fdsc.paper.verdict.verdict`).
-    """
-
-    gain: str
-    band: str
-    paper: float
-    peak: float
-    lmi_gamma: float
-    ratio: float
-    verdict: str
-
-
-@dataclass(frozen=True)
-class PrintedBounds:
-    """The four printed bounds (see :func:`printed_bounds`).
-
-    Parameters
-    ----------
-    bounds : tuple of PrintedBound
-        In the order of the gains.
-    """
-
-    bounds: tuple
-
-    def rows(self) -> list:
-        """One row per bound with every field (for :func:`fdsc.paper.report.html_table`).
-
-        Returns
-        -------
-        list of dict
-        """
-        return [vars(b).copy() for b in self.bounds]
-
-    def __getitem__(self, gain: str) -> PrintedBound:
-        """The bound of one gain.
-
-        Parameters
-        ----------
-        gain : str
-            Name of the gain.
-
-        Returns
-        -------
-        PrintedBound
-        """
-        return pick(self.bounds, "gain", gain)
-
-
-def printed_bounds(table: GainBandTable | None = None) -> PrintedBounds:
-    """The four printed bounds beside the in-band peak of σ_max for the printed gains.
-
-    Parameters
-    ----------
-    table : GainBandTable, optional
-        Output of :func:`gain_band_table` (default: computed).
-
-    Returns
-    -------
-    PrintedBounds
-    """
-    table = gain_band_table() if table is None else table
-    ctrl = paper_data("controllers")
-    out = []
-    for p in table.pairs:
-        bound = ctrl[p.gain]["bound"]
-        if ctrl[p.gain]["band"] == p.band:
-            out.append(PrintedBound(p.gain, p.band, bound, p.peak, p.lmi_gamma, bound / p.peak,
-                                    verdict(bound, p.peak)))
-    return PrintedBounds(tuple(out))
 
 
 # -- γ or γ²? ------------------------------------------------------------------------------------
@@ -491,6 +457,36 @@ class GammaSquaredCheck:
         """
         return pick(self.tones, "gain", gain)
 
+    def prose(self) -> dict:
+        """The numbers the chapter quotes (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: ``omega0``, ``tau``, ``dt``; per gain ``ratio_<gain>`` (simulated
+            energy ratio), ``gamma_<gain>``, ``gamma_sq_<gain>``, ``tone_rel_<gain>`` (relative
+            distance of the ratio to ``σ_max(G(jω0))²``).
+        """
+        out = {"omega0": _exact(self.tones[0].omega0), "tau": _exact(self.tau), "dt": _exact(self.dt)}
+        for t in self.tones:
+            out |= {f"ratio_{t.gain}": num(t.simulated_ratio, 4),
+                    f"gamma_{t.gain}": num(t.gamma_lf, 4), f"gamma_sq_{t.gain}": num(t.gamma_sq, 4),
+                    f"tone_rel_{t.gain}": num(t.rel_to_tone_gain, 2)}
+        return out
+
+    def display_rows(self) -> list:
+        """One row per gain, formatted for the book: ``gain, gamma, gamma_sq, tone_sq, ratio,
+        below_gamma, below_gamma_sq``.
+
+        Returns
+        -------
+        list of dict
+        """
+        return [{"gain": t.gain, "gamma": num(t.gamma_lf, 4), "gamma_sq": num(t.gamma_sq, 4),
+                 "tone_sq": num(t.gain_at_omega0_sq, 4), "ratio": num(t.simulated_ratio, 4),
+                 "below_gamma": "yes" if t.bound_gamma_holds else "no",
+                 "below_gamma_sq": "yes" if t.bound_gamma_sq_holds else "no"} for t in self.tones]
+
     def to_record(self) -> RecordPart:
         """Record entry ``lemma1_gamma_squared``: the energy ratio against γ and γ².
 
@@ -506,11 +502,11 @@ class GammaSquaredCheck:
             {t.gain: {"gamma": t.gamma_lf, "gamma_sq": t.gamma_sq,
                       "energy_ratio": t.simulated_ratio} for t in self.tones},
             "differs" if fails else "match",
-            f"energy ratio of the windowed tone exp(-((t - 4 tau)/tau)^2) sin({omega0:g} t), "
-            f"tau = {self.tau:g} s, inside Omega_1, simulated exactly (first-order hold): it "
-            f"tends to sigma_max(G(j{omega0:g}))^2 and exceeds gamma for "
-            f"{', '.join(fails) or 'no gain'}, while gamma^2 bounds it for every gain. The LMI of "
-            f"paper eq. (7) carries -gamma^2: the energy bound is gamma^2.",
+            f"Energy ratio ∫zᵀz / ∫d² of the windowed tone d(t) = exp(−((t − 4τ)/τ)²) "
+            f"sin({_exact(omega0)} t), τ = {_exact(self.tau)} s, inside the LF range Ω_1, simulated "
+            f"exactly (first-order hold): it tends to σ_max(G(j{_exact(omega0)}))², exceeds γ for "
+            f"{', '.join(fails) or 'no gain'} and stays below γ² for every gain. The LMI of paper "
+            f"eq. (7) carries −γ²: the energy bound is γ², not γ.",
             omega0=omega0, tau=self.tau, dt=self.dt),))
 
 
@@ -610,6 +606,19 @@ class GammaSlip:
         """``ratio − γ`` (positive: the unsquared bound fails)."""
         return self.ratio - self.gamma
 
+    def prose(self) -> dict:
+        """The numbers the chapter quotes (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: ``omega0``, ``tau``, ``gamma``, ``gamma_sq``, ``ratio``,
+            ``sigma0`` (σ_max at ω0) and ``excess`` (ratio − γ).
+        """
+        return {"omega0": _exact(self.omega0), "tau": _exact(self.tau), "gamma": num(self.gamma, 4),
+                "gamma_sq": num(self.gamma_sq, 4), "ratio": num(self.ratio, 4),
+                "sigma0": num(self.sigma_at_omega0, 4), "excess": num(self.excess, 3)}
+
     def to_record(self) -> RecordPart:
         """Record entry ``gamma_slip_in_band``: (P.1), (P.2) and paper Remark 5 in band.
 
@@ -624,12 +633,12 @@ class GammaSlip:
             {"energy_ratio": self.ratio, "gamma": self.gamma, "gamma_sq": self.gamma_sq,
              "sigma_max_at_omega0": self.sigma_at_omega0},
             "differs" if self.exceeds_gamma else "match",
-            f"windowed tone at {self.omega0:g} rad/s inside the {self.kind} band (tau = "
-            f"{self.tau:g} s) under {self.gain}: the energy ratio {self.ratio:.4g} "
+            f"Windowed tone at {_exact(self.omega0)} rad/s inside the {self.kind} range (τ = "
+            f"{_exact(self.tau)} s) under {self.gain}: the energy ratio {num(self.ratio, 4)} "
             + ("exceeds" if self.exceeds_gamma else "stays below")
-            + f" gamma = {self.gamma:.4g} and "
+            + f" γ = {num(self.gamma, 4)} and "
             + ("stays below" if self.below_gamma_sq else "exceeds")
-            + f" gamma^2 = {self.gamma_sq:.4g}; read with squares the three statements agree "
+            + f" γ² = {num(self.gamma_sq, 4)}; read with squares, the three statements agree "
             "with the simulation.", gain=self.gain, omega0=self.omega0, tau=self.tau),))
 
 

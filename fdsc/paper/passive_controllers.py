@@ -1,6 +1,6 @@
-"""Chapter 'passive_controllers': the gains of Sec. IV recomputed by synthesis, paper Fig. 3, the
-printed bounds examined, ε and σ, the best HF design, paper Remark 3's gap, LMIs against a direct
-search.
+"""Chapter 'passive_controllers': the gains of Sec. IV recomputed by synthesis, paper Fig. 3, ε and
+σ, the best HF design, paper Remark 3's gap, LMIs against a direct search. The bounds printed
+beside the gains are judged in the appendix :mod:`fdsc.paper.printed_bounds`.
 """
 
 import math
@@ -12,10 +12,9 @@ from numpy.typing import ArrayLike
 from .._validation import as_choice, as_vector
 from ..bands import Band
 from ..frequency import band_peak, sigma_max
-from ..plant import LTISystem, Plant
+from ..plant import Plant
 from ..random_systems import random_plant
 from ..synthesis import DEFAULT_EPSILON, SynthesisResult, optimize_gain, synthesize, synthesize_hinf
-from .bound_search import time_domain_bound_search
 from .cache import cached
 from .data import (
     aircraft,
@@ -23,8 +22,8 @@ from .data import (
     paper_data,
     paper_gains,
 )
-from .gkyp_lemma import gain_band_table
 from .names import FDSC_IN_BAND, FIGURE_IDS, GAIN_BANDS, GAIN_ORDER
+from .prose import count, num
 from .results import RecordPart, entry, pick
 from .verdict import verdict
 
@@ -49,10 +48,6 @@ __all__ = [
     "sigma_sensitivity",
     "HFBest",
     "hf_best",
-    "BoundRow",
-    "BoundCandidates",
-    "bound_candidates",
-    "printed_bound_entries",
     "CrosscheckCase",
     "DirectCrosscheck",
     "direct_crosscheck",
@@ -69,10 +64,6 @@ HF_SIGMA_GRID = (0.0, *(float(s) for s in np.geomspace(1e-2, 1e2, 17)))
 
 #: Bands of the random plants of :func:`direct_crosscheck` (not the paper's: the plants are random).
 _CROSSCHECK_BANDS = {"LF": Band.lf(1.0), "MF": Band.mf(1.0, 5.0)}
-
-
-#: Record ids of the printed bounds.
-_BOUND_IDS = {"K_f1": "bound_f1", "K_f2": "bound_f2", "K_f3": "bound_f3", "K_e": "bound_e"}
 
 
 def _default_omega():
@@ -104,6 +95,12 @@ def controller_label(gain: str) -> str:
     """
     as_choice("gain", gain, GAIN_ORDER)
     return f"{gain} (PassC-{GAIN_BANDS[gain]})"
+
+
+def _exact(x):
+    """A chosen parameter printed with just the digits it has (0.01, not 0.0100)."""
+    digits = f"{x:g}".replace(".", "").replace("-", "").lstrip("0")
+    return num(float(x), max(1, len(digits)))
 
 
 def _fmt_K(K):
@@ -245,7 +242,7 @@ class GainRow:
             f"{self.rel_diff:.2e}; in-band gain of the printed gain "
             f"{self.gamma_paper_gain:.4f}, of ours {self.gamma_sweep:.4f} "
             f"(LMI bound {self.gamma_lmi:.4f}). "
-            + ("The HF LMI is only sufficient and depends on sigma; see hf_best."
+            + ("The HF LMI is only sufficient and depends on sigma: see the best HF design."
                if band == "HF" else
                "The optimal gains are high-gain and gamma is flat along the gain's size, "
                "so only a few digits are determined."))
@@ -287,6 +284,38 @@ class GainComparison:
         """
         return [{**vars(g), "paper_K": _fmt_K(g.paper_K), "ours_K": _fmt_K(g.ours_K)}
                 for g in self.gains]
+
+    def display_rows(self) -> list:
+        """One row per gain, formatted for the book: ``name, band, paper_K, ours_K, rel_diff,
+        gamma_paper_gain, gamma_lmi, gamma_sweep, verdict``.
+
+        Returns
+        -------
+        list of dict
+        """
+        return [{"name": g.name, "band": g.band, "paper_K": _fmt_K(g.paper_K), "ours_K": _fmt_K(g.ours_K),
+                 "rel_diff": num(g.rel_diff, 2), "gamma_paper_gain": num(g.gamma_paper_gain, 5),
+                 "gamma_lmi": num(g.gamma_lmi, 5), "gamma_sweep": num(g.gamma_sweep, 5),
+                 "verdict": g.verdict} for g in self.gains]
+
+    def prose(self) -> dict:
+        """The numbers the chapter quotes (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: per gain ``rel_<gain>`` (relative difference to the printed gain),
+            ``verdict_<gain>``, ``gpaper_<gain>``, ``glmi_<gain>``, ``gsweep_<gain>`` (in-band
+            peak of the printed gain, LMI γ and in-band peak of ours); ``fast_pole_lo`` and
+            ``fast_pole_hi`` (fastest poles of our LF, MF and H∞ designs).
+        """
+        fast = [g.fastest_pole for g in self.gains if g.band != "HF"]
+        out = {"fast_pole_lo": num(min(fast)), "fast_pole_hi": num(max(fast))}
+        for g in self.gains:
+            out |= {f"rel_{g.name}": num(g.rel_diff, 2), f"verdict_{g.name}": g.verdict,
+                    f"gpaper_{g.name}": num(g.gamma_paper_gain, 4), f"glmi_{g.name}": num(g.gamma_lmi, 4),
+                    f"gsweep_{g.name}": num(g.gamma_sweep, 4)}
+        return out
 
     def to_record(self) -> RecordPart:
         """Record entries ``K_f1``, ``K_f2``, ``K_f3``, ``K_e``.
@@ -432,6 +461,18 @@ class GapCurves:
         idx = np.nonzero(np.diff(np.sign(self.gap[label])))[0]
         return float(self.omega[idx[0]]) if idx.size else math.nan
 
+    def prose(self) -> dict:
+        """The numbers the chapter quotes (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: ``cross_lo``, ``cross_hi`` (where the candidates' gaps first change
+            sign, rad/s), ``name_in``.
+        """
+        cross = [self.first_crossing(k) for k in self.gap]
+        return {"cross_lo": num(min(cross)), "cross_hi": num(max(cross)), "name_in": self.name_in}
+
     def to_record(self) -> RecordPart:
         """Record entry ``remark3_gap`` (new): where the gap of each candidate changes sign.
 
@@ -542,6 +583,62 @@ class EpsilonScan:
     def spread(self) -> float:
         """``max / min − 1`` of the in-band peak over ε."""
         return float(self.gamma_sweep.max() / self.gamma_sweep.min() - 1)
+
+    def spread_over(self, lo: float, hi: float) -> float:
+        """``max / min − 1`` of the in-band peak over the values of ε in ``[lo, hi]``.
+
+        Parameters
+        ----------
+        lo, hi : float
+            The ends of the range of ε.
+
+        Returns
+        -------
+        float
+
+        Raises
+        ------
+        ValueError
+            If no ε of the scan lies in ``[lo, hi]``.
+        """
+        inside = (self.epsilon >= lo) & (self.epsilon <= hi)
+        if not inside.any():
+            raise ValueError(f"lo, hi must enclose an epsilon of the scan {self.epsilon.tolist()}, "
+                             f"but found [{lo}, {hi}]")
+        g = self.gamma_sweep[inside]
+        return float(g.max() / g.min() - 1)
+
+    def prose(self, lo: float = 1e-2, hi: float = 1.0) -> dict:
+        """The numbers the chapter quotes (:mod:`fdsc.paper.prose`).
+
+        Parameters
+        ----------
+        lo, hi : float, optional
+            A sub-range of ε whose spread is quoted beside that of the whole grid.
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: ``spread`` and ``grid_lo``, ``grid_hi`` (the in-band peak's
+            relative spread over the whole grid of ε and its ends); ``spread_mid`` over
+            ``[mid_lo, mid_hi]``.
+        """
+        return {"spread": num(self.spread, 2), "grid_lo": _exact(self.epsilon.min()),
+                "grid_hi": _exact(self.epsilon.max()), "spread_mid": num(self.spread_over(lo, hi), 2),
+                "mid_lo": _exact(lo), "mid_hi": _exact(hi)}
+
+    def display_rows(self) -> list:
+        """One row per ε, formatted for the book: ``kind, epsilon, gamma_lmi, gamma_sweep,
+        fast_pole, K``.
+
+        Returns
+        -------
+        list of dict
+        """
+        return [{"kind": self.kind, "epsilon": _exact(e), "gamma_lmi": num(float(g), 5),
+                 "gamma_sweep": num(float(w), 5), "fast_pole": num(float(p)), "K": _fmt_K(K)}
+                for e, g, w, p, K in zip(self.epsilon, self.gamma_lmi, self.gamma_sweep,
+                                         self.fast_pole, self.K, strict=True)]
 
     def rows(self) -> list:
         """One row per ε: ``kind, epsilon, gamma_lmi, gamma_sweep, fast_pole, K`` (K printed).
@@ -712,6 +809,25 @@ class HFBest:
         """Certified γ at the smallest σ of the scan (σ = 0 on the default grid)."""
         return float(self.scan.gamma_lmi[np.argmin(self.scan.sigma)])
 
+    def prose(self) -> dict:
+        """The numbers the chapter quotes (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: ``sigma``, ``gamma_lmi``, ``in_band``, ``out_of_band`` of the best
+            design; ``K_f3_in_band``, ``K_f3_out_of_band``; ``lmi_sigma0`` (the certified γ at
+            the smallest σ) and ``sigma_min`` (that σ); ``n_sigma``, ``sigma_lo``, ``sigma_hi``
+            (the scan's positive grid).
+        """
+        pos = self.scan.sigma[self.scan.sigma > 0]
+        return {"sigma": _exact(self.sigma), "gamma_lmi": num(self.gamma_lmi, 4),
+                "in_band": num(self.in_band, 4), "out_of_band": num(self.out_of_band, 4),
+                "K_f3_in_band": num(self.K_f3_in_band, 4), "K_f3_out_of_band": num(self.K_f3_out_of_band, 4),
+                "lmi_sigma0": num(self.gamma_lmi_smallest_sigma, 4),
+                "sigma_min": _exact(float(self.scan.sigma.min())), "n_sigma": count(self.scan.sigma.size),
+                "sigma_lo": _exact(float(pos.min())), "sigma_hi": _exact(float(pos.max()))}
+
     def to_record(self) -> RecordPart:
         """Record entry ``hf_best`` (new).
 
@@ -755,205 +871,6 @@ def hf_best(sigmas: ArrayLike | None = None, *, epsilon: float = DEFAULT_EPSILON
     return HFBest(float(scan.sigma[k]), scan.K[k], float(scan.gamma_lmi[k]),
                   float(scan.gamma_sweep[k]), float(scan.out_of_band[k]), band_peak(cl3, band).gamma,
                   _out_of_band_peak(cl3, band), scan)
-
-
-# -- the printed bounds ---------------------------------------------------------------------------
-
-@dataclass(frozen=True)
-class BoundRow:
-    """A printed bound and the computed quantities tried to reproduce it.
-
-    Parameters
-    ----------
-    gain : str
-        Name of the printed gain.
-    band : str
-        The band it was designed for.
-    paper : float
-        The printed bound.
-    candidates : dict
-        ``{quantity: value}`` of every quantity tried.
-    primary : float
-        The in-band peak of σ_max for the printed gain (what the printed claim bounds).
-    omega_primary : float
-        Where that peak is attained in rad/s.
-    primary_verdict : str
-        Verdict of ``primary`` against ``paper``.
-    best : str
-        The candidate nearest to ``paper``.
-    value : float
-        Its value.
-    best_verdict : str
-        Its verdict, picked after the fact (match or differs).
-    verdict : str
-        The verdict of the bound (see :func:`bound_candidates`).
-    crossings : tuple of float
-        Frequencies in rad/s where σ_max of the printed gain equals the printed number.
-    """
-
-    gain: str
-    band: str
-    paper: float
-    candidates: dict
-    primary: float
-    omega_primary: float
-    primary_verdict: str
-    best: str
-    value: float
-    best_verdict: str
-    verdict: str
-    crossings: tuple
-
-    @property
-    def ratio(self) -> float:
-        """``paper / primary``."""
-        return self.paper / self.primary
-
-    @property
-    def rel_diff(self) -> float:
-        """``|paper − primary| / primary``."""
-        return abs(self.paper - self.primary) / self.primary
-
-    def to_entry(self) -> dict:
-        """The record entry of this bound (``bound_f1``, ``bound_f2``, ``bound_f3``, ``bound_e``).
-
-        Returns
-        -------
-        dict
-        """
-        primary_ok = self.primary_verdict in ("match", "close")
-        # the number that decided the verdict: the primary quantity, unless only a candidate matched
-        recomputed = self.value if self.verdict == "match" and not primary_ok else self.primary
-        return entry(
-            _BOUND_IDS[self.gain], f"Sec. IV, bound printed beside {self.gain}", self.paper,
-            recomputed, self.verdict,
-            f"the printed claim is sigma_max(G(jw), {self.gain}) < {self.paper} on the "
-            f"{self.band} band; the in-band peak of the printed gain is {self.primary:.4f} "
-            f"({self.primary_verdict}). "
-            + ("" if primary_ok else
-               f"Nearest of the candidates tried (picked after the fact, so at best a "
-               f"match, never close): {self.best} = {self.value:.4f} ({self.best_verdict}). "
-               "Tried: " + ", ".join(self.candidates) + "."),
-            candidates=self.candidates, crossings_rad_s=list(self.crossings))
-
-
-@dataclass(frozen=True)
-class BoundCandidates:
-    """The four printed bounds examined (see :func:`bound_candidates`).
-
-    Parameters
-    ----------
-    bounds : tuple of BoundRow
-        In the order of :data:`fdsc.paper.names.GAIN_ORDER`.
-    """
-
-    bounds: tuple
-
-    def __getitem__(self, gain: str) -> BoundRow:
-        """The row of one gain.
-
-        Parameters
-        ----------
-        gain : str
-            Name of the gain.
-
-        Returns
-        -------
-        BoundRow
-        """
-        return pick(self.bounds, "gain", gain)
-
-    @property
-    def n_candidates(self) -> int:
-        """Quantities tried per bound."""
-        return len(self.bounds[0].candidates)
-
-    def rows(self) -> list:
-        """One row per bound: every field but the candidates, and ``ratio``.
-
-        Returns
-        -------
-        list of dict
-            For :func:`fdsc.paper.report.html_table`.
-        """
-        return [{**{k: v for k, v in vars(b).items() if k != "candidates"}, "ratio": b.ratio}
-                for b in self.bounds]
-
-    def candidate_rows(self) -> list:
-        """One row per bound and candidate: ``gain, paper, candidate, value, closest`` (an arrow
-        on the nearest).
-
-        Returns
-        -------
-        list of dict
-        """
-        return [{"gain": b.gain, "paper": b.paper, "candidate": name, "value": value,
-                 "closest": "←" if name == b.best else ""}
-                for b in self.bounds for name, value in b.candidates.items()]
-
-    def to_record(self) -> RecordPart:
-        """Record entries ``bound_f1``, ``bound_f2``, ``bound_f3``, ``bound_e``.
-
-        Returns
-        -------
-        RecordPart
-        """
-        return RecordPart(tuple(b.to_entry() for b in self.bounds))
-
-
-@cached
-def bound_candidates(results: GainDesigns | None = None) -> BoundCandidates:
-    """For each printed bound, the computed quantities tried to reproduce it.
-
-    Candidates: the band peak of the printed gain; the LMI γ and the band peak of our gain;
-    σ_max at ω = 0; the squared band peak (the γ/γ² slip); the band peak of each output alone;
-    the frequency (if any) where the printed gain's σ_max equals the printed number.
-
-    The verdict follows :data:`fdsc.paper.verdict.VERDICT_RULES`: the quantity the paper says it
-    printed is the in-band peak of the printed gain ("σ_max(G(jω), K) < b for all ω in Ω"); if
-    that is not a match or close, the nearest candidate counts only if it matches to the printed
-    precision (it was picked after the fact), otherwise the bound is ``not reproducible``.
-
-    Parameters
-    ----------
-    results : GainDesigns, optional
-        Output of :func:`recompute_gains` (default: computed).
-
-    Returns
-    -------
-    BoundCandidates
-    """
-    results = recompute_gains() if results is None else results
-    plant, printed, bands = aircraft(), paper_gains(), paper_bands()
-    ctrl = paper_data("controllers")
-    out = []
-    for name in GAIN_ORDER:
-        band = bands[GAIN_BANDS[name]]
-        cl = plant.closed_loop(printed[name])
-        pk = band_peak(cl, band)
-        peak = pk.gamma
-        cands = {"band peak, printed gain": peak,
-                 "LMI gamma, our gain": results[name].gamma_lmi,
-                 "band peak, our gain": results[name].gamma_sweep,
-                 "sigma_max at w = 0": float(sigma_max(cl, [0.0])[0]),
-                 "squared band peak": peak**2}
-        for k, label in enumerate(plant.names.get("output_names", [])):
-            sub = LTISystem(cl.A, cl.B, cl.C[[k]], cl.D[[k]])
-            cands[f"band peak of output {label}"] = band_peak(sub, band).gamma
-        paper = ctrl[name]["bound"]
-        w = np.geomspace(1e-4, 1e5, 20001)
-        s = sigma_max(cl, w) - paper
-        crossings = tuple(w[np.nonzero(np.diff(np.sign(s)))[0]].tolist())
-        best = min(cands, key=lambda c: abs(cands[c] - paper))
-        primary_verdict = verdict(paper, peak)
-        best_verdict = verdict(paper, cands[best], after_the_fact=True)
-        if primary_verdict in ("match", "close"):
-            row_verdict = primary_verdict
-        else:
-            row_verdict = "match" if best_verdict == "match" else "not reproducible"
-        out.append(BoundRow(name, band.kind, paper, cands, peak, pk.omega, primary_verdict, best,
-                            cands[best], best_verdict, row_verdict, crossings))
-    return BoundCandidates(tuple(out))
 
 
 # -- LMIs against a direct search ----------------------------------------------------------------
@@ -1016,6 +933,32 @@ class DirectCrosscheck:
         list of dict
         """
         return [vars(c).copy() for c in self.cases]
+
+    def display_rows(self) -> list:
+        """One row per case, formatted for the book.
+
+        Returns
+        -------
+        list of dict
+        """
+        return [{"plant": count(c.plant + 1), "open_loop_stable": "yes" if c.open_loop_stable else "no",
+                 "band": c.band, "gamma_lmi": num(c.gamma_lmi, 5), "gamma_sweep": num(c.gamma_sweep, 5),
+                 "gamma_direct": num(c.gamma_direct, 5), "lmi_excess": num(c.lmi_excess, 2)}
+                for c in self.cases]
+
+    def prose(self) -> dict:
+        """The numbers the chapter quotes (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict
+            ``{name: text}``: ``n_plants``, ``seed``, ``n_starts``, ``lf_stable_max`` (largest
+            LMI excess, LF, open-loop stable plants), ``worst`` (largest excess of all).
+        """
+        return {"n_plants": count(len({c.plant for c in self.cases})), "seed": count(self.seed),
+                "n_starts": count(self.n_starts),
+                "lf_stable_max": num(self.max_excess("LF", open_loop_stable=True), 2),
+                "worst": num(max(abs(c.lmi_excess) for c in self.cases), 2)}
 
     def max_excess(self, band: str, *, open_loop_stable: bool) -> float:
         """Largest ``|lmi_excess|`` over the cases of one band and stability class.
@@ -1096,65 +1039,20 @@ def direct_crosscheck(n_plants: int = 4, *, seed: int = 7, kinds: tuple = ("LF",
 
 
 def record_part() -> RecordPart:
-    """Record entries K_f1..K_e (gains), bound_f1..bound_e (printed bounds), hf_best, the ε scans,
-    paper Remark 3's gap, the direct-search cross-check, the printed bounds against time-domain
-    quantities (:mod:`fdsc.paper.bound_search`, folded into the four bound entries), and the figure
-    ``sigma_max`` (paper Fig. 3).
+    """Record entries K_f1..K_e (gains), bound_f1..bound_e (the printed bounds, one verdict each
+    with every reading tried: :mod:`fdsc.paper.printed_bounds`), hf_best, the ε scans, paper
+    Remark 3's gap, the direct-search cross-check, and the figure ``sigma_max`` (paper Fig. 3).
 
     Returns
     -------
     RecordPart
     """
+    # the appendix on the printed bounds builds on this chapter's designs (it imports this
+    # module), so it is imported here, when the record asks for its entries
+    from .printed_bounds import printed_bound_entries
+
     return (gain_comparison().to_record() + printed_bound_entries() + hf_best().to_record()
             + epsilon_sensitivity("LF").to_record() + epsilon_sensitivity("MF").to_record()
             + remark3_gap().to_record()
             + direct_crosscheck().to_record()
             + sigma_curves(paper_gains()).to_record())
-
-
-def printed_bound_entries() -> RecordPart:
-    """Record entries ``bound_f1`` … ``bound_e``: one verdict per printed bound, every reading tried.
-
-    Each entry's verdict is that of :func:`bound_candidates` (the printed claim's own quantity,
-    σ_max over the band, and the frequency-domain candidates). Its ``readings`` list every
-    reading tried: the band peak of the printed gain, Lemma 1's γ (equal to it), the other
-    frequency-domain candidates and the time-domain search of :mod:`fdsc.paper.bound_search`
-    (nearest quantity, hits equal to the printed value to its precision, and how many quantities
-    were searched). A time-domain hit is picked after the fact among that many quantities and
-    reads the bound as another quantity than the σ_max the text states, so it is reported, not
-    used for the verdict.
-
-    Returns
-    -------
-    RecordPart
-    """
-    search = time_domain_bound_search().to_record().entries[0]
-    n = search["tried"]["candidates_per_bound"]
-    table = gain_band_table()
-    out = []
-    for e in bound_candidates().to_record().entries:
-        gain = next(g for g, i in _BOUND_IDS.items() if i == e["id"])
-        band = GAIN_BANDS[gain]
-        td = search["recomputed"][gain]
-        hits = td["hits"]
-        readings = {
-            "band peak of the printed gain (the stated quantity)": table.by_gain_band("peak")[gain][band],
-            "Lemma 1's gamma for the printed gain": table.by_gain_band("lmi_gamma")[gain][band],
-            "frequency-domain candidates": e["candidates"],
-            "time domain, nearest of the quantities searched": {
-                k: td[k] for k in ("signal", "quantity", "horizon_s", "value")},
-            "time domain, equal to the printed value": hits,
-            "time domain, quantities searched": n,
-        }
-        said = (f" Time domain: of {n} quantities searched, "
-                + (f"{len(hits)} {'equals' if len(hits) == 1 else 'equal'} the printed value to its "
-                   "precision ("
-                   + "; ".join(f"{h['quantity']} under {h['signal']} at T = {h['horizon_s']:g} s"
-                               for h in hits)
-                   + "), a quantity other than the sigma_max the text states, found by a search "
-                   "after the fact: reported, not used for the verdict."
-                   if hits else f"none equals the printed value (nearest: {td['quantity']} under "
-                   f"{td['signal']} at T = {td['horizon_s']:g} s, {td['value']:.5f})."))
-        out.append({**e, "note": e["note"] + said, "readings": readings,
-                    "time_domain_within_1pct": search["within_1pct"][gain]})
-    return RecordPart(tuple(out))

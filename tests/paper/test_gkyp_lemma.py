@@ -3,16 +3,14 @@ import pytest
 from numpy.testing import assert_allclose
 
 from fdsc import LTISystem, band_peak, sigma_max
-from fdsc.paper.data import aircraft, paper_bands, paper_data, paper_gains
+from fdsc.paper.data import aircraft, paper_bands, paper_gains
 from fdsc.paper.gkyp_lemma import (
     GainBandTable,
     GammaSlip,
     GammaSquaredCheck,
-    PrintedBounds,
     gain_band_table,
     gamma_vs_gamma_squared,
     in_band_gamma_slip,
-    printed_bounds,
     record_part,
     windowed_tone_ratio,
 )
@@ -66,15 +64,15 @@ def test_gain_band_table_lookups(table):
         table.pair("K_f1", "XF")
 
 
-def test_printed_bounds_rows(table):
-    pb = printed_bounds(table)
-    assert isinstance(pb, PrintedBounds)
-    assert [b.gain for b in pb.bounds] == ["K_f1", "K_f2", "K_f3", "K_e"]
-    assert pb["K_f2"].verdict == "close"  # K_f2: 0.4025 printed, 0.40279 recomputed
-    ctrl = paper_data("controllers")
-    for b in pb.bounds:
-        assert b.paper == ctrl[b.gain]["bound"]
-        assert b.ratio == pytest.approx(b.paper / b.peak, rel=1e-15)
+def test_gain_band_table_prose_and_display_rows(table):
+    text = table.prose()
+    assert text["n_pairs"] == "16"
+    # the MF solves stop short of full accuracy (accepted: their certificates pass the check)
+    assert text["short_bands"] == "MF" and text["n_short"] == "4"
+    assert text["peak_K_f3_HF"] == "1.605" and text["kf3_slow_pole"].startswith("−0.01")
+    rows = table.display_rows()
+    assert len(rows) == 16 and all(isinstance(v, str) for r in rows for v in r.values())
+    assert "status" not in rows[0]      # no solver strings on the page
 
 
 def test_table_record_entries(table):
@@ -86,6 +84,8 @@ def test_table_record_entries(table):
     assert sigma_peak["paper"] is None and "verdicts" not in sigma_peak
     assert sigma_peak["printed_bounds"]["K_f2"] == {"MF": 0.4025}
     assert sigma_peak["recomputed"]["K_f3"]["HF"] == table.pair("K_f3", "HF").peak
+    for e in part.entries:
+        assert "The printed bounds" in e["note"] and "verdict" in e["note"]
 
 
 def test_gamma_squared_not_gamma_bounds_the_energy_ratio():
@@ -101,6 +101,9 @@ def test_gamma_squared_not_gamma_bounds_the_energy_ratio():
     part = r.to_record()
     _check_part(part, ["lemma1_gamma_squared"])
     assert part.entries[0]["verdict"] == "differs"
+    text = r.prose()
+    assert (text["omega0"], text["tau"]) == ("0.5", "300")   # chosen parameters, as chosen
+    assert text["ratio_K_f3"] == "1,072"
 
 
 def test_gamma_vs_gamma_squared_rejects_an_out_of_band_tone():
@@ -146,6 +149,7 @@ def test_in_band_gamma_slip_ratio_is_the_tone_gain_squared():
     part = r.to_record()
     _check_part(part, ["gamma_slip_in_band"])
     assert part.entries[0]["verdict"] == "differs"
+    assert r.prose()["omega0"] == "10.5" and r.prose()["gamma"] == "1.605"
 
 
 @pytest.mark.parametrize("kwargs, match", [

@@ -3,12 +3,11 @@ import pytest
 from numpy.testing import assert_allclose
 
 from fdsc import band_peak, sigma_max
-from fdsc.paper.data import aircraft, paper_bands, paper_data, paper_gains
+from fdsc.paper.data import aircraft, paper_bands, paper_gains
 from fdsc.paper.names import GAIN_ORDER
 from fdsc.paper.passive_controllers import (
     EPSILON_GRID,
     HF_SIGMA_GRID,
-    BoundCandidates,
     DirectCrosscheck,
     EpsilonScan,
     GainComparison,
@@ -16,14 +15,12 @@ from fdsc.paper.passive_controllers import (
     GapCurves,
     HFBest,
     SigmaCurves,
-    bound_candidates,
     controller_label,
     direct_crosscheck,
     epsilon_sensitivity,
     gain_comparison,
     gap_curves,
     hf_best,
-    printed_bound_entries,
     recompute_gains,
     record_part,
     remark3_gap,
@@ -79,6 +76,12 @@ def test_gain_comparison_against_an_independent_computation(designs):
     assert cmp["K_f1"].fastest_pole < -100  # high-gain design
     # the printed precision (four decimals), rows separated by semicolons: no raw array
     assert cmp.rows()[0]["paper_K"] == "[0.1048, 15.0897; 0.0205, 2.9760]"
+    shown = cmp.display_rows()
+    assert [r["verdict"] for r in shown] == [g.verdict for g in cmp.gains]
+    assert all(isinstance(v, str) for r in shown for v in r.values())
+    text = cmp.prose()
+    assert text["rel_K_f1"] == "5.6 × 10⁻⁴" and text["verdict_K_f3"] == "differs"
+    assert text["fast_pole_lo"].startswith("−")     # a pole, printed with a true minus sign
 
 
 def test_gain_comparison_record_entries(designs):
@@ -129,6 +132,9 @@ def test_remark3_gap_record_entry():
     _check_part(part, ["remark3_gap"])
     cross = part.entries[0]["recomputed"]["first_sign_change_rad_s"]
     assert all(10.0 < c < 100.0 for c in cross.values())  # inside Ω_3, above ϖ_h
+    text = gap.prose()
+    assert text["name_in"] == "K_f3"
+    assert float(text["cross_lo"]) == pytest.approx(min(cross.values()), rel=1e-2)
 
 
 def test_epsilon_scan():
@@ -140,6 +146,19 @@ def test_epsilon_scan():
     assert [r["epsilon"] for r in scan.rows()] == [1e-2, 1.0]
     _check_part(scan.to_record(), ["epsilon_scan_lf"])
     assert EPSILON_GRID[1] == 1e-2
+
+
+def test_epsilon_scan_states_the_range_of_each_spread():
+    # the spread over the whole grid is not the spread over [0.01, 1]: both are quoted, each
+    # beside its range
+    scan = epsilon_sensitivity("LF")
+    text = scan.prose()
+    assert (text["grid_lo"], text["grid_hi"], text["mid_lo"], text["mid_hi"]) == ("0.001", "10", "0.01", "1")
+    assert scan.spread_over(1e-3, 10.0) == scan.spread
+    assert scan.spread_over(1e-2, 1.0) < 1e-3 * scan.spread
+    assert [r["epsilon"] for r in scan.display_rows()] == ["0.001", "0.01", "0.1", "1", "10"]
+    with pytest.raises(ValueError, match="lo, hi must enclose"):
+        scan.spread_over(2.0, 3.0)
 
 
 @pytest.mark.parametrize("kind, epsilons, match", [("HF", (1.0,), "kind"), ("LF", (np.inf,), "epsilons")])
@@ -164,28 +183,9 @@ def test_sigma_scan_and_hf_best():
     assert best.K_f3_out_of_band > 100 * best.K_f3_in_band
     _check_part(best.to_record(), ["hf_best"])
     assert HF_SIGMA_GRID[0] == 0.0 and len(HF_SIGMA_GRID) == 18
-
-
-def test_bound_candidates(designs):
-    bc = bound_candidates(designs)
-    assert isinstance(bc, BoundCandidates)
-    ctrl = paper_data("controllers")
-    for b in bc.bounds:
-        assert b.paper == ctrl[b.gain]["bound"]
-        assert b.candidates["band peak, printed gain"] == b.primary
-        assert b.value == min(b.candidates.values(), key=lambda v: abs(v - b.paper))
-        assert b.candidates["squared band peak"] == pytest.approx(b.primary**2, rel=1e-15)
-        # σ_max of the printed gain equals the printed number at every listed crossing
-        if b.crossings:
-            s = sigma_max(aircraft().closed_loop(paper_gains()[b.gain]), b.crossings)
-            assert_allclose(s, b.paper, rtol=2e-3)
-    assert bc["K_f1"].omega_primary == pytest.approx(1.0, rel=1e-9)  # the LF band edge
-    assert [b.verdict for b in bc.bounds] == ["not reproducible", "close", "not reproducible",
-                                              "not reproducible"]
-    assert len(bc.candidate_rows()) == len(bc.bounds) * bc.n_candidates
-    assert sum(r["closest"] == "←" for r in bc.candidate_rows()) == len(bc.bounds)
-    part = bc.to_record()
-    _check_part(part, ["bound_f1", "bound_f2", "bound_f3", "bound_e"])
+    text = best.prose()
+    assert text["sigma_min"] == "0" and text["n_sigma"] == "3"
+    assert (text["sigma_lo"], text["sigma_hi"]) == ("1", "100")
 
 
 def test_direct_crosscheck():
@@ -197,6 +197,8 @@ def test_direct_crosscheck():
     assert dc.cases[0].open_loop_stable  # even plants are drawn stable
     assert np.isnan(dc.max_excess("MF", open_loop_stable=True))
     _check_part(dc.to_record(), ["lmi_vs_direct"])
+    assert [r["plant"] for r in dc.display_rows()] == ["1", "2"]   # counted from 1 for readers
+    assert dc.prose()["n_plants"] == "2"
 
 
 def test_direct_crosscheck_rejects_an_unknown_band():
@@ -218,22 +220,7 @@ def test_record_part_ids_and_figure():
     assert ids[9:] == ["epsilon_scan_lf", "epsilon_scan_mf", "remark3_gap", "lmi_vs_direct"]
     _check_part(part, ids)
     assert list(part.figures) == ["sigma_max"]
-
-
-def test_each_printed_bound_has_one_verdict_and_every_reading():
-    entries = {e["id"]: e for e in printed_bound_entries().entries}
-    assert [entries[f"bound_{k}"]["verdict"] for k in ("f1", "f2", "f3", "e")] == [
-        "not reproducible", "close", "not reproducible", "not reproducible"]
-    for e in entries.values():
-        r = e["readings"]
-        # Lemma 1 is lossless here: its γ is the band peak, the quantity the text states
-        assert r["Lemma 1's gamma for the printed gain"] == pytest.approx(
-            r["band peak of the printed gain (the stated quantity)"], rel=1e-5)
-        assert r["time domain, quantities searched"] >= 100
-    # K_f1's and K_f3's printed values equal a 100 s L2 ratio found by the search: reported as a
-    # reading, not turned into a match (picked after the fact among hundreds of quantities)
-    for k in ("f1", "f3"):
-        hits = entries[f"bound_{k}"]["readings"]["time domain, equal to the printed value"]
-        assert hits and all(h["horizon_s"] == 100.0 for h in hits)
-        assert "not used for the verdict" in entries[f"bound_{k}"]["note"]
-    assert entries["bound_e"]["readings"]["time domain, equal to the printed value"] == []
+    # the bounds printed beside the gains: one verdict each, by the quantity the text states
+    bounds = {e["id"]: e for e in part.entries if e["id"].startswith("bound_")}
+    assert [bounds[f"bound_{k}"]["verdict"] for k in ("f1", "f2", "f3", "e")] == [
+        "differs", "close", "differs", "differs"]

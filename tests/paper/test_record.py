@@ -20,10 +20,10 @@ def test_record_entries_have_the_required_fields():
         for per_band in by_id[key]["recomputed"].values():
             assert set(per_band) == {"LF", "MF", "HF", "EF"}
     assert by_id["K_f3"]["verdict"] == "differs" and by_id["K_e"]["verdict"] == "close"
-    # the verdict rule: a nearest-of-candidates pick is never "close"; K_f2's peak is the printed
-    # quantity itself (0.40279 against 0.4025) and may be
+    # one verdict per printed bound, by the quantity the text states (the band peak of σ_max):
+    # K_f2's peak 0.40279 is close to 0.4025, the other three are far from theirs
     assert [by_id[f"bound_{k}"]["verdict"] for k in ("f1", "f2", "f3", "e")] == [
-        "not reproducible", "close", "not reproducible", "not reproducible"]
+        "differs", "close", "differs", "differs"]
     assert by_id["thm1_gammas"]["verdict"] == "new" and by_id["hf_best"]["verdict"] == "new"
     assert by_id["Q_1"]["verdict"] == by_id["Q_2"]["verdict"] == "not reproducible"
     assert "nan" not in by_id["K_e"]["note"]
