@@ -138,6 +138,46 @@ class DwellCertificate:
     slow: DwellRuns
     fast: DwellRuns
 
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, as text (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict of str
+            The bound: ``tau`` (τ*, s), ``decay`` (λ, 1/s), ``mu``, ``mu_crude``, ``tau_crude``
+            (at the same λ) and ``tau_crude_best`` (over the grid), ``lim_1``/``lim_2`` (the
+            modes' decay limits, 1/s), ``n_decays``, ``n_solves``, ``max_eig``. Theorem 1's
+            P^s_i: ``t1_paper_tau``, ``t1_paper_mu`` (printed Q's), ``t1_ours_rate`` (the K_f3
+            mode's decay rate with our Q's, 1/s) and ``t1_ours_growth`` (−2 × that rate). The
+            periodic margin: ``per_n`` dwells from ``per_tmin`` (ms) to ``per_tmax`` (s),
+            ``per_rho_max``, ``lower`` (s). The runs: ``slow_*`` and ``fast_*`` with ``n`` runs
+            of ``T`` s, ``sw`` switches, ``env`` (largest envelope ratio) and ``final``
+            (largest ‖x(T)‖/‖x(0)‖); ``fast_dwells``, the range of the fast runs' dwells (s).
+        """
+        from .prose import count, num, span
+
+        b, p, t1 = self.bound, self.periodic, self.theorem1
+        out = {"tau": num(b.tau), "decay": num(b.decay), "mu": num(b.mu), "mu_crude": num(b.mu_crude),
+               "tau_crude": num(b.tau_crude), "tau_crude_best": num(float(np.min(b.taus_crude))),
+               "lim_1": num(float(b.decay_limits[0])), "lim_2": num(float(b.decay_limits[1])),
+               "n_decays": count(int(b.decays.size)), "n_solves": count(b.n_solves),
+               "max_eig": num(float(b.max_eigs.max())),
+               "t1_paper_tau": num(t1["paper"].tau), "t1_paper_mu": num(t1["paper"].mu),
+               "t1_ours_rate": num(float(t1["ours"].rates[1])),
+               "t1_ours_growth": num(-2 * float(t1["ours"].rates[1])),
+               "per_n": count(int(p.taus.size)), "per_tmin": num(float(p.taus[0]) * 1e3, 2),
+               "per_tmax": num(float(p.taus[-1]), 2), "per_rho_max": num(float(p.rho_worst.max()), 5),
+               "lower": num(p.lower_bound, 2)}
+        for name, runs in (("slow", self.slow), ("fast", self.fast)):
+            s = runs.summary()
+            out |= {f"{name}_n": count(s["n_runs"]), f"{name}_sw": count(s["n_switches"]),
+                    f"{name}_env": num(s["max_envelope_ratio"], 7),
+                    f"{name}_final": num(s["max_final_norm_ratio"]),
+                    f"{name}_T": num(runs.checks[0].horizon, 2)}
+        # the fast runs' dwells are set, not measured: print them as set
+        out["fast_dwells"] = span(self.fast.min_dwell, self.fast.max_dwell, 1, sep=" to ")
+        return out
+
     def record_dict(self) -> dict:
         """Plain JSON-able summary for the record (entry ``hysteresis_dwell``).
 

@@ -28,6 +28,7 @@ from ..stream import Case, simulate_batch
 from ..switching import DEFAULT_GAMMA_TOL, certify_q, design_q
 from .cache import cached
 from .data import aircraft, our_q, paper_disturbance, paper_gains, paper_modes
+from .prose import count, matrix_text, num, pct
 from .results import RecordPart, entry
 
 __all__ = [
@@ -45,6 +46,7 @@ __all__ = [
     "ResidueRun",
     "residues",
     "smallest_case",
+    "smallest_table",
     "LMIWitness",
     "lmi_witness",
     "QScaling",
@@ -488,6 +490,35 @@ class SearchResult:
                             for law in _LAWS}})
         return rows
 
+    def family_table(self) -> list:
+        """:meth:`by_family` as text with reader-facing column names (the readings of ẋ by name).
+
+        Returns
+        -------
+        list of dict
+        """
+        names = {f"{kind} ({law})": f"{kind} ({_READING[law]})"
+                 for kind in ("diverging", "sampling artefacts") for law in _LAWS}
+        return [{names.get(k, k): (v if isinstance(v, str) else count(v)) for k, v in r.items()}
+                for r in self.by_family()]
+
+    def diagnosis_table(self) -> list:
+        """One row per divergent run, every cell text (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        list of dict
+            Family, seed, reading of ẋ, the log growth of V over the jumps and over the flows,
+            the share of switches at which V increases and of samples in one-sample dwells, the
+            spectral abscissa of ½(A₀ + A₁) and the cause.
+        """
+        return [{"family": d.family, "seed": str(d.seed), "reading of ẋ": _READING[d.law],
+                 "log growth, jumps": num(d.log_growth_jumps),
+                 "log growth, flows": num(d.log_growth_flows),
+                 "switches with V up": pct(d.frac_up), "one-sample dwells": pct(d.chatter, 1),
+                 "abscissa of (A₀+A₁)/2": num(d.average_abscissa), "cause": d.cause}
+                for d in self.diagnoses]
+
     def divergent(self) -> list:
         """The divergent outcomes, smallest first (fewest states, then family order, then seed).
 
@@ -545,15 +576,16 @@ class SearchResult:
         Returns
         -------
         list of dict
+            Every cell text (:mod:`fdsc.paper.prose`).
         """
         clean = {(d.family, d.seed) for d in self.clean(limit)}
-        rows = [{"family": d.family, "seed": d.seed, "reading of ẋ": _READING[d.law],
-                 "one-sample dwells": d.chatter,
-                 "clean": ("n/a" if d.law != "previous"
-                           else "yes" if (d.family, d.seed) in clean else "no (chatters)")}
+        rows = [({"family": d.family, "seed": str(d.seed), "reading of ẋ": _READING[d.law],
+                  "one-sample dwells": pct(d.chatter, 1),
+                  "clean": ("n/a" if d.law != "previous"
+                            else "yes" if (d.family, d.seed) in clean else "no (chatters)")},
+                 (d.law != "previous", (d.family, d.seed) not in clean, d.chatter, d.seed))
                 for d in self.diagnoses]
-        return sorted(rows, key=lambda r: (r["reading of ẋ"] != "measured ẋ", r["clean"] != "yes",
-                                           r["one-sample dwells"], r["seed"]))
+        return [r for r, _ in sorted(rows, key=lambda rk: rk[1])]
 
     def prose(self) -> dict:
         """The search's numbers as text for the chapter (:mod:`fdsc.paper.prose`).
@@ -565,10 +597,13 @@ class SearchResult:
             ``solver_failures``, ``diverging_measured``, ``diverging_candidate``,
             ``artefacts_measured``, ``artefacts_candidate``), the clean runs (``n_clean``,
             ``clean_limit``, ``clean_max``, ``chatter_min``, ``chatter_max`` over the measured
-            runs that are not clean), and the grid constants.
+            runs that are not clean), the divergent runs by family (``div_spiral``, the stretched
+            spirals; ``div_other``, the other families), the diagnoses (``n_diag``;
+            ``n_flows_down``, runs whose flows decrease V; ``n_avg_unstable``, runs whose average
+            dynamics is unstable; ``cause_<reading>_<cause>`` per reading ``measured`` or
+            ``candidate`` and cause ``chattering``, ``V``, ``flows``, ``other``), and the grid
+            constants.
         """
-        from .prose import count, num, pct
-
         cnt = self.counts()
         clean = self.clean()
         dirty = [d.chatter for d in self.diagnoses if d.law == "previous" and d.chatter > CLEAN_LIMIT]
@@ -584,7 +619,22 @@ class SearchResult:
                 "n_dirty": count(len(dirty)),
                 "chatter_min": pct(min(dirty, default=0.0)), "chatter_max": pct(max(dirty, default=0.0)),
                 "n_initial": count(N_INITIAL), "slow": num(SLOW_CONSTANTS, 2),
-                "dtf": num(DT_FRACTION, 1), "maxsteps": count(MAX_STEPS), "refine": count(REFINE)}
+                "dtf": num(DT_FRACTION, 1), "maxsteps": count(MAX_STEPS), "refine": count(REFINE),
+                **self._diagnosis_prose()}
+
+    def _diagnosis_prose(self):
+        rows = self.by_family()
+        n_div = {r["family"]: sum(r[f"diverging ({law})"] for law in _LAWS) for r in rows}
+        cause_key = {"chattering": "chattering", "V jumps up at switches": "V",
+                     "V grows during flows": "flows", "other": "other"}
+        reading = {"previous": "measured", "candidate": "candidate"}
+        return {"div_spiral": count(n_div["spiral-2"]),
+                "div_other": count(sum(v for f, v in n_div.items() if f != "spiral-2")),
+                "n_diag": count(len(self.diagnoses)),
+                "n_flows_down": count(sum(d.log_growth_flows < 0 for d in self.diagnoses)),
+                "n_avg_unstable": count(sum(d.average_abscissa >= 0 for d in self.diagnoses)),
+                **{f"cause_{reading[law]}_{cause_key[cause]}": count(n)
+                   for law, c in self.causes().items() for cause, n in c.items()}}
 
     def causes(self) -> dict:
         """Number of divergent runs per cause and law.
@@ -679,19 +729,23 @@ class GapClosing:
                 "convergent_certified": sum(d[3] for d in self.convergent)}
 
     def paper_rows(self) -> list:
-        """One row per (Q's, law, condition, kind) on the paper's example.
+        """One row per (Q's, reading of ẋ, condition, kind) on the paper's example, every cell
+        text with reader-facing names (:mod:`fdsc.paper.prose`).
 
         Returns
         -------
         list of dict
         """
+        qname = {"paper": "printed Q", "ours": "our Q"}
+        cname = {"jump": "jump and switch-in", "common": "common P"}
+        kname = {"stability": "stability (d = 0)", "gain": "L₂ gain"}
         rows = []
         for (q, law, cond, kind), r in self.paper.items():
-            rows.append({"Q's": q, "law": law, "condition": cond, "kind": kind,
-                         "certified": r["certified"],
-                         "result": (f"decay {r['decay']:.3g} 1/s" if kind == "stability" else
-                                    "γ = " + ", ".join(f"{g:.4g}" for g in r["gammas"]))
-                         if r["certified"] else r["why"]})
+            rows.append({"Q's": qname[q], "reading of ẋ": _READING[law], "condition": cname[cond],
+                         "kind": kname[kind], "certified": "yes" if r["certified"] else "no",
+                         "result": (f"decay {num(r['decay'])} 1/s" if kind == "stability" else
+                                    "γ = " + ", ".join(num(g) for g in r["gammas"]))
+                         if r["certified"] else "no certificate"})
         return rows
 
 
@@ -830,6 +884,34 @@ class ResidueRun:
                 "ratio − Σβγ² (energy)": self.ratio - self.bound_energy}
 
 
+    def table_row(self) -> dict:
+        """:meth:`row` as text (:mod:`fdsc.paper.prose`), the Q's by their reader-facing name.
+
+        Returns
+        -------
+        dict
+        """
+        q = {"paper": "printed Q", "ours": "our Q"}[self.q_label]
+        return {k: (q if k == "Q's" else v if isinstance(v, str) else
+                    count(v) if isinstance(v, int) else num(float(v)))
+                for k, v in self.row().items()}
+
+    def prose(self) -> dict:
+        """The numbers the chapter quotes of this run, as text (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict of str
+            ``T`` and ``window`` (s), ``ratio``, ``eps``, ``bound_time`` and ``bound_energy``
+            (Σβγ² by time and by energy), ``beta_t`` and ``beta_e`` (mode 1's share of the time
+            and of the disturbance energy).
+        """
+        return {"T": num(self.horizon), "window": num(self.window), "ratio": num(self.ratio),
+                "eps": num(self.eps), "bound_time": num(self.bound_time),
+                "bound_energy": num(self.bound_energy), "beta_t": pct(float(self.beta_time[0]), 1),
+                "beta_e": pct(float(self.beta_energy[0]), 2)}
+
+
 def _residue_run(q_label, kind, horizon, dt, window):
     pm = paper_modes()
     cert = our_q() if q_label == "ours" else certify_q(pm["modes"], pm["bands"], pm["Q"])
@@ -929,6 +1011,40 @@ def smallest_case(search: SearchResult) -> dict:
             "eig_A_1": [str(np.round(e, 4)) for e in np.linalg.eigvals(c.modes[1].A)]}
 
 
+def _eigenvalues_text(a):
+    def one(e):
+        if abs(e.imag) < 1e-12 * max(abs(e.real), 1.0):
+            return num(float(e.real), 4)
+        return f"{num(float(e.real), 4)} {'+' if e.imag > 0 else '−'} {num(abs(float(e.imag)), 4)}i"
+    ev = np.linalg.eigvals(np.asarray(a, dtype=float))
+    return ", ".join(one(e) for e in ev[np.lexsort((ev.imag, ev.real))])
+
+
+def smallest_table(search: SearchResult) -> list:
+    """The smallest divergent case (:func:`smallest_case`) as a table, every cell text
+    (matrices through :func:`fdsc.paper.prose.matrix_text`).
+
+    Parameters
+    ----------
+    search : SearchResult
+
+    Returns
+    -------
+    list of dict
+        ``quantity``, ``value``; empty if no case diverges.
+    """
+    small = smallest_case(search)
+    if not small:
+        return []
+    names = {"A_0": "A₀", "A_1": "A₁", "B": "B", "C": "C", "Q_0": "Q₀", "Q_1": "Q₁", "x0": "initial state"}
+    rows = [{"quantity": v, "value": matrix_text(small[k])} for k, v in names.items()]
+    rows += [{"quantity": f"eigenvalues of {names[k]}", "value": _eigenvalues_text(small[k])}
+             for k in ("A_0", "A_1")]
+    rows.append({"quantity": "Q's from",
+                 "value": {"design": "paper Remark 4", "random": "random, certified"}[small["q_source"]]})
+    return rows
+
+
 @dataclass(frozen=True)
 class QScaling:
     """The printed law's switching signal with the Q's scaled by a common factor (see :func:`q_scaling`).
@@ -1015,6 +1131,22 @@ class LMIWitness:
     def holds(self) -> bool:
         """True if both LMIs hold strictly for both modes (all largest eigenvalues < 0)."""
         return bool(np.all(self.max_eig_1 < 0) and np.all(self.max_eig_2 < 0))
+
+    def prose(self) -> dict:
+        """The point as text (:mod:`fdsc.paper.prose`), both modes joined by "and".
+
+        Returns
+        -------
+        dict of str
+            ``t`` (the t_s of P^s_i), ``g`` (γ_i), ``e1`` and ``e2`` (largest eigenvalues of
+            (T1-1) and (T1-2)), and mode 0's alone: ``t_0``, ``e1_0``.
+        """
+        def both(v):
+            return " and ".join(num(float(x)) for x in v)
+
+        return {"t": both(self.t_s), "g": both(self.gammas), "e1": both(self.max_eig_1),
+                "e2": both(self.max_eig_2), "t_0": num(float(self.t_s[0])),
+                "e1_0": num(float(self.max_eig_1[0]))}
 
 
 _PHI = np.array([[0.0, 1.0], [1.0, 0.0]])

@@ -27,7 +27,7 @@ from .data import (
     paper_gains,
     paper_modes,
 )
-from .prose import num
+from .prose import num, pct
 from .results import RecordPart, entry
 
 __all__ = [
@@ -43,6 +43,7 @@ __all__ = [
     "comparison_disturbances",
     "ComparisonTable",
     "comparison",
+    "display_name",
     "XddotCost",
     "xddot_cost",
     "law_variants",
@@ -135,6 +136,18 @@ class ScoreWeights:
         pos = self.omega[self.second["MF"] > 0]
         return float(pos.min()), float(pos.max())
 
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, as text (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict of str
+            ``printed_mf_max`` (the printed MF score's largest weight), ``mf_lo`` and ``mf_hi``
+            (where the second-order MF weight is positive on the grid, rad/s).
+        """
+        lo, hi = self.mf_positive_range
+        return {"printed_mf_max": num(self.printed_mf_max), "mf_lo": num(lo), "mf_hi": num(hi)}
+
 
 def score_weights(omega=None) -> ScoreWeights:
     """Frequency weights of the printed and the second-order scores on Ω_1, Ω_2, Ω_3.
@@ -181,6 +194,25 @@ class ThreeModeCertificates:
     equal_q: ScoreCertificate
     equal_q_scaled: ScoreCertificate
     mf_peak: float
+
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, as text (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict of str
+            The Remark 4 design: ``gamma_tol`` (γ of the other modes), ``design_g2`` and
+            ``design_eta2`` (γ₂, η₂ of the MF mode), ``design_q2`` (largest eigenvalue of its
+            Q₂); ``mf_peak`` (K_f2's peak on Ω₂); the second-order law with Q_k = I:
+            ``eq_g1``, ``eq_g2``, ``eq_g3``, and with Q_k = 10⁻⁴ I: ``eqs_g2``, ``eqs_g3``.
+        """
+        d, e, es = self.design, self.equal_q, self.equal_q_scaled
+        return {"gamma_tol": num(float(d.gammas[0]), 2), "design_g2": num(float(d.gammas[1])),
+                "design_eta2": num(float(d.etas[1])),
+                "design_q2": num(float(np.linalg.eigvalsh(d.Q[1]).max())),
+                "mf_peak": num(self.mf_peak),
+                **{f"eq_g{k + 1}": num(float(g)) for k, g in enumerate(e.gammas)},
+                "eqs_g2": num(float(es.gammas[1])), "eqs_g3": num(float(es.gammas[2]))}
 
 
 @cached
@@ -293,6 +325,54 @@ class ComparisonTable:
                                       for j, c in enumerate(self.controllers)}}
                 for k, d in enumerate(self.disturbances)]
 
+    def table(self) -> list:
+        """One row per controller (reader-facing name, :func:`display_name`), the energy ratio on
+        every disturbance as text (:mod:`fdsc.paper.prose`), for
+        :func:`fdsc.paper.report.html_table`.
+
+        Returns
+        -------
+        list of dict
+            Keys ``controller`` and the names of :attr:`disturbances`.
+        """
+        return [{"controller": display_name(c),
+                 **{d: num(float(self.ratio[k, j])) for k, d in enumerate(self.disturbances)}}
+                for j, c in enumerate(self.controllers)]
+
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, as text (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict of str
+            ``horizon`` (s) and ``dt_ms``; on the MF tones: ``mf3_max`` (worst ratio of the
+            second-order three-mode law), ``mf2_ours_min``, ``mf2_paper_min`` (best of the
+            two-mode FDSC with our and the printed Q's), ``mfpass`` (worst of PassC-MF); the
+            printed scores' largest MF time share ``printed_mf_share``, the Remark 4 law's
+            smallest HF time share ``r4_hf_share``; the ratios of the second-order three-mode
+            law (``*_3``) and of the two-mode FDSC with our Q's (``*_2``) on the LF (``lf``),
+            HF (``hf``), LF + MF + HF (``mix``) and piecewise (``pw``) disturbances, PassC-HF on
+            HF (``hf_pass``) and PassC-LF on LF + MF + HF (``mix_lf``).
+        """
+        three, three_p = "FDSC-3 (2nd order, Q = I)", "FDSC-3 (printed scores, Q = I)"
+        mf = [d for d in self.disturbances if d.startswith("MF tone")]
+        k3 = self.controllers.index(three_p)
+        kq = self.controllers.index("FDSC-3 (Remark 4 Q's)")
+        out = {"horizon": num(self.horizon, 2), "dt_ms": num(self.dt * 1e3, 2),
+               "mf3_max": num(max(self.value(d, three) for d in mf)),
+               "mf2_ours_min": num(min(self.value(d, "FDSC-2 (our Q's)") for d in mf)),
+               "mf2_paper_min": num(min(self.value(d, "FDSC-2 (paper Q's)") for d in mf)),
+               "mfpass": num(max(self.value(d, "PassC-MF") for d in mf)),
+               "printed_mf_share": pct(float(self.time_share[:, k3, 1].max()), 1),
+               "r4_hf_share": pct(float(self.time_share[:, kq, 2].min()), 1),
+               "hf_pass": num(self.value("HF (paper eq. (57))", "PassC-HF")),
+               "mix_lf": num(self.value("LF + MF + HF", "PassC-LF"))}
+        for name, key in (("LF (paper eq. (56))", "lf"), ("HF (paper eq. (57))", "hf"),
+                          ("LF + MF + HF", "mix"), ("LF -> MF -> HF", "pw")):
+            out[f"{key}_3"] = num(self.value(name, three))
+            out[f"{key}_2"] = num(self.value(name, "FDSC-2 (our Q's)"))
+        return out
+
     def best(self, disturbance: str) -> str:
         """The controller with the smallest ratio on one disturbance.
 
@@ -308,6 +388,26 @@ class ComparisonTable:
         return self.controllers[int(np.argmin(self.ratio[self.disturbances.index(disturbance)]))]
 
 
+def display_name(name: str) -> str:
+    """The reader-facing name of a controller or disturbance of :func:`comparison`.
+
+    Parameters
+    ----------
+    name : str
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> display_name("FDSC-2 (paper Q's)"), display_name("LF -> MF -> HF")
+    ('FDSC-2 (printed Q)', 'LF → MF → HF')
+    """
+    return (name.replace("paper Q's", "printed Q").replace("our Q's", "our Q")
+            .replace("Remark 4 Q's", "Remark 4 Q").replace("->", "→"))
+
+
 #: Fixed gains: name → (gain, slot of its band in the time-share array).
 _FIXED = {"PassC-EF": ("K_e", None), "PassC-LF": ("K_f1", 0), "PassC-MF": ("K_f2", 1),
           "PassC-HF": ("K_f3", 2)}
@@ -318,8 +418,8 @@ def comparison(horizon: float = 150.0, dt: float = STATIONARY_DT) -> ComparisonT
     """Run every controller on every disturbance of :func:`comparison_disturbances`.
 
     Controllers: the three-mode laws of :func:`law_variants`, the two-mode FDSC with the paper's and
-    with our Q's (:func:`fdsc.paper.data.paper_fdsc`), and PassC-EF/LF/MF/HF. All from rest, law
-    "previous" (the measured ẋ and ẍ).
+    with our Q's (:func:`fdsc.paper.data.paper_fdsc`), and PassC-EF/LF/MF/HF. All from rest, with
+    the measured ẋ and ẍ (the mode active just before each sample).
 
     Parameters
     ----------
@@ -387,6 +487,21 @@ class XddotCost:
     dt: float
     steps: tuple
     disagreement: np.ndarray
+
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, as text (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict of str
+            Per differencing interval ``s`` (samples): ``fd_s`` (share of samples with another
+            choice) and ``fd_ms_s`` (the interval in ms).
+        """
+        out = {}
+        for s, v in zip(self.steps, self.disagreement, strict=True):
+            out[f"fd_{s}"] = pct(float(v), 1)
+            out[f"fd_ms_{s}"] = num(s * self.dt * 1e3, 2)
+        return out
 
 
 @cached
@@ -460,15 +575,16 @@ def record_part() -> RecordPart:
     best2 = min(min(table.value(d, "FDSC-2 (our Q's)"), table.value(d, "FDSC-2 (paper Q's)"))
                 for d in mf_rows)
     note = (
-        "The printed MF score sees only Re Psi for real signals and is negative at every instant "
-        f"(largest frequency weight {sw.printed_mf_max:.3g}); a second-order score on "
-        "[x''; x'; x] has the weight -(w^2 - w1^2)(w^2 - w2^2), positive exactly inside "
-        "[1, 10] rad/s, at the cost of measuring or estimating x''. With all three scores "
-        f"second-order and Q = I the three-mode FDSC reaches ratios up to {worst3:.3g} on MF tones "
-        f"where the two-mode FDSC reaches at best {best2:.3g}. The Remark 4 design "
-        f"certifies gamma_MF = {cert.design.gammas[1]:.4g} (K_f2's MF peak {cert.mf_peak:.4g}) but "
-        "its law sits in the HF mode most of the time; the certificate of the Q = I law is loose "
-        f"(gammas {', '.join(num(float(g)) for g in cert.equal_q.gammas)}).")
+        "The printed MF score sees only Re Ψ for real signals and is negative at every instant "
+        f"(largest frequency weight {num(sw.printed_mf_max)}); a second-order score on "
+        "[ẍ; ẋ; x] has the weight −(ω² − ϖ₁²)(ω² − ϖ₂²), positive exactly inside "
+        f"Ω₂ = [{num(three_bands()[1].lower, 1)}, {num(three_bands()[1].upper, 1)}] rad/s, at the cost "
+        "of measuring or estimating ẍ. With all three scores second-order and Q = I the three-mode "
+        f"FDSC reaches energy ratios up to {num(worst3)} on MF tones where the two-mode FDSC "
+        f"reaches at best {num(best2)}. The Remark 4 design certifies γ_MF = "
+        f"{num(float(cert.design.gammas[1]), 4)} (K_f2's MF peak {num(cert.mf_peak, 4)}) but its law "
+        "sits in the HF mode most of the time; the certificate of the Q = I law is loose "
+        f"(γ = {', '.join(num(float(g)) for g in cert.equal_q.gammas)}).")
     return RecordPart((entry("three_mode", "Theorem 1 with I = 3 (K_f1, K_f2, K_f3), Sec. III-IV "
                              "(not in the paper)", None, rec, "new", note,
                              horizon=table.horizon, dt=table.dt),))

@@ -19,6 +19,7 @@
 """
 
 from dataclasses import dataclass
+from numbers import Integral, Real
 
 import numpy as np
 
@@ -41,6 +42,7 @@ from .data import (
 )
 from .dwell_time import dwell_certificate
 from .names import CONTROLLER_GAINS
+from .prose import count, num, pct, times
 from .results import RecordPart, entry
 
 __all__ = [
@@ -60,6 +62,8 @@ __all__ = [
     "dwell_law_check",
     "comparator_energies",
     "against_comparators",
+    "comparator_table",
+    "LAW_TITLES",
     "record_part",
 ]
 
@@ -69,6 +73,34 @@ REGION_KINDS = ("only mode 1 holds itself", "only mode 2 holds itself",
 
 #: The d value (besides 0) at which the regions are drawn: one tone's amplitude.
 D_REF = 1.0
+
+
+def _cell(value):
+    """A table cell as the book prints it (:mod:`fdsc.paper.prose`): yes/no, counts, numbers."""
+    if isinstance(value, bool | np.bool_):
+        return "yes" if value else "no"
+    if isinstance(value, Integral):
+        return count(value)
+    if isinstance(value, Real):
+        return num(float(value))
+    return str(value)
+
+
+def _share(value, digits=1):
+    """A share as a percentage, a dash where there is none (NaN)."""
+    return "—" if np.isnan(value) else pct(float(value), digits)
+
+
+def _param(p):
+    """A parameter of a grid with the digits that print it exactly (``0.002``, ``1 × 10⁸``)."""
+    p = float(p)
+    digits = next((d for d in range(1, 7) if float(f"{p:.{d - 1}e}") == p), 7)
+    return num(p, digits)
+
+
+def _pair(a, b):
+    """Switch counts at dt and dt/2."""
+    return f"{count(a)} → {count(b)}"
 
 
 def _law_weights(Q):
@@ -140,6 +172,8 @@ class LawRegions:
         Its active modes.
     traj_codes : (k,) ndarray
         The kind of each of its samples (with the sample's own d).
+    dt : float, optional
+        Step of the run in s.
     """
 
     x1: np.ndarray
@@ -149,6 +183,33 @@ class LawRegions:
     traj_x: np.ndarray
     traj_sigma: np.ndarray
     traj_codes: np.ndarray
+    dt: float = STATIONARY_DT
+
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, as text (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict of str
+            ``ang_p_*`` and ``ang_o_*`` (share of the directions of each kind at d = 0 with the
+            printed and with our Q's: ``only1``, ``only2``, ``both``, ``neither``), ``traj_*``
+            (share of the run's samples of each kind, and its length ``traj_horizon`` in s),
+            ``d_ref``, and the poles that explain the regions: ``eig_fast`` (the fastest of the
+            K_f1 loop) and ``eig_slow`` (the slowest of the K_f3 loop), in 1/s.
+        """
+        modes = paper_modes()["modes"]
+        kinds = ("only1", "only2", "both", "neither")
+        traj = np.bincount(self.traj_codes, minlength=4) / self.traj_codes.size
+        out = {f"ang_{q[0]}_{k}": pct(float(v), 1)
+               for q, shares in (("p", self.angular_share["paper Q"]),
+                                 ("o", self.angular_share["our Q"]))
+               for k, v in zip(kinds, shares, strict=True)}
+        out |= {f"traj_{k}": pct(float(v), 1) for k, v in zip(kinds, traj, strict=True)}
+        out["traj_horizon"] = _param(round((self.traj_x.shape[0] - 1) * self.dt, 9))
+        out["d_ref"] = _param(D_REF)
+        out["eig_fast"] = num(float(np.linalg.eigvals(modes[0].A).real.min()))
+        out["eig_slow"] = num(float(np.linalg.eigvals(modes[1].A).real.max()))
+        return out
 
 
 @cached
@@ -184,7 +245,7 @@ def law_regions(*, grid: int = 301, horizon: float = 60.0, dt: float = STATIONAR
         c = region_codes(holds_itself(pm["modes"], W, dirs, 0.0))
         shares[label] = np.bincount(c, minlength=4) / c.size
     traj_codes = region_codes(holds_itself(pm["modes"], _law_weights(pm["Q"]), run.x, run.d))
-    return LawRegions(x1, x2, codes, shares, run.x, run.sigma, traj_codes)
+    return LawRegions(x1, x2, codes, shares, run.x, run.sigma, traj_codes, float(dt))
 
 
 @dataclass(frozen=True)
@@ -286,17 +347,50 @@ class ConvergenceStudy:
         return float((e.max() - e.min()) / np.median(e))
 
     def table(self) -> list:
-        """Rows for :func:`fdsc.paper.report.html_table`.
+        """One row per run, every cell text (:mod:`fdsc.paper.prose`), for
+        :func:`fdsc.paper.report.html_table` (a table may show a subset of the columns).
 
         Returns
         -------
         list of dict
+            Keys ``case``, ``dt (ms)``, ``∫zᵀz``, ``HF mode``, ``switches``,
+            ``switches × dt (s)``, ``in chattering region (s)``, ``mode 1 there``,
+            ``largest ‖Δu‖/dt``.
         """
-        return [{"case": r.case, "dt (s)": r.dt, "energy ∫zᵀz": r.energy, "share PassC-HF": r.share_hf,
-                 "switches": r.switches, "switches × dt (s)": r.switch_time,
-                 "time in chattering set (s)": r.chatter_time,
-                 "share of mode 1 there": r.share_lf_in_chatter, "max ‖Δu‖/dt": r.rate_max}
+        return [{"case": r.case, "dt (ms)": _param(r.dt * 1e3), "∫zᵀz": num(r.energy),
+                 "HF mode": _share(r.share_hf), "switches": count(r.switches),
+                 "switches × dt (s)": num(r.switch_time),
+                 "in chattering region (s)": num(r.chatter_time),
+                 "mode 1 there": _share(r.share_lf_in_chatter), "largest ‖Δu‖/dt": num(r.rate_max)}
                 for r in self.rows]
+
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, as text (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict of str
+            ``horizon`` (s), ``levels``, ``dt0_ms`` and ``dtN_us`` (the coarsest step in ms and
+            the finest in µs) and per case ``c``: switch counts ``sw0_c``/``swN_c`` at the
+            coarsest and the finest step, switch count × dt ``swdt0_c``/``swdtN_c`` (s), time in
+            the chattering region ``ch0_c``/``chN_c`` (s), mode 1's share there
+            ``m1_0_c``/``m1_N_c``, the energy's spread over the steps ``spread_c``, the
+            actuator rate ``rate0_c``/``rateN_c`` and the largest input jump ``du_c``.
+        """
+        first = self.of(self.cases()[0])
+        out = {"horizon": _param(self.horizon), "levels": count(len(first)),
+               "dt0_ms": _param(first[0].dt * 1e3), "dtN_us": _param(first[-1].dt * 1e6)}
+        for c in self.cases():
+            r0, rN = self.of(c)[0], self.of(c)[-1]
+            out |= {f"sw0_{c}": count(r0.switches), f"swN_{c}": count(rN.switches),
+                    f"swdt0_{c}": num(r0.switch_time), f"swdtN_{c}": num(rN.switch_time),
+                    f"ch0_{c}": num(r0.chatter_time), f"chN_{c}": num(rN.chatter_time),
+                    f"m1_0_{c}": num(r0.share_lf_in_chatter),
+                    f"m1_N_{c}": num(rN.share_lf_in_chatter),
+                    f"spread_{c}": pct(self.energy_spread(c), 1),
+                    f"rate0_{c}": num(r0.rate_max), f"rateN_{c}": num(rN.rate_max),
+                    f"du_{c}": num(r0.du_max)}
+        return out
 
 
 #: Disturbances of the convergence study.
@@ -358,6 +452,12 @@ LAW_GRIDS = {"hysteresis": (0.1, 0.5, 0.9, 0.99),
              "hysteresis_abs": (1e3, 1e4, 1e5, 1e6, 1e8),
              "dwell": (0.002, 0.01, 0.1, 1.0, 10.0),
              "window": (0.01, 0.1, 1.0, 10.0)}
+
+#: Reader-facing names of the laws of :data:`LAW_GRIDS` and of their parameters.
+LAW_TITLES = {"hysteresis": ("hysteresis, relative margin", "relative margin h"),
+              "hysteresis_abs": ("hysteresis, absolute margin", "absolute margin h"),
+              "dwell": ("minimum dwell time", "dwell time τ_d (s)"),
+              "window": ("moving window (FD-EEF)", "window T_w (s)")}
 
 #: The paper's simulation cases of the law study: stationary LF and HF (500 s), mixed with
 #: ρ_p = 0.1 (500 s), piecewise with T = 500 s, ρ_t = 0.2, ρ*_p = 0.1.
@@ -475,7 +575,8 @@ class LawStudy:
         return min(ok, key=lambda p: float(np.mean(np.log(self.relative_energy(law, p)))))
 
     def table(self, law: str) -> list:
-        """One row per parameter: energy per case, switches at dt and dt/2, well-posed.
+        """One row per parameter, every cell text (:mod:`fdsc.paper.prose`), for
+        :func:`fdsc.paper.report.html_table` (a table may show a subset of the columns).
 
         Parameters
         ----------
@@ -485,37 +586,119 @@ class LawStudy:
         Returns
         -------
         list of dict
+            Keys ``law`` (its :data:`LAW_TITLES` name), ``parameter``, per case ``c`` of
+            :data:`LAW_CASES` the energy ``c`` (∫zᵀz at dt), the energy relative to the printed
+            law's ``c ÷ printed`` and the switch counts at dt and dt/2 ``c switches``, and
+            ``well-posed`` (yes/no).
         """
         rows = []
         for p in LAW_GRIDS[law]:
-            row = {"parameter": p}
-            for c in LAW_CASES:
-                row[f"energy {c}"] = self.energy[(law, p, c)]
-            for c in LAW_CASES:
-                row[f"switches {c} (dt; dt/2)"] = (f"{self.switches[(law, p, c)]}; "
-                                                  f"{self.switches_half[(law, p, c)]}")
-            row["switch count independent of dt"] = self.well_posed(law, p)
+            row = {"law": LAW_TITLES[law][0], "parameter": _param(p)}
+            for c, rel in zip(LAW_CASES, self.relative_energy(law, p), strict=True):
+                row[c] = num(self.energy[(law, p, c)])
+                row[f"{c} ÷ printed"] = num(float(rel))
+                row[f"{c} switches"] = _pair(self.switches[(law, p, c)],
+                                             self.switches_half[(law, p, c)])
+            row["well-posed"] = _cell(self.well_posed(law, p))
             rows.append(row)
         return rows
 
     def reference_table(self) -> list:
-        """The printed law and the fixed gains in the same cases.
+        """The printed law and the fixed gains in the same cases, every cell text: one row of
+        energies (∫zᵀz at dt) per controller, then the printed law's switch counts at dt and dt/2.
 
         Returns
         -------
         list of dict
+            Keys ``controller`` and the cases of :data:`LAW_CASES`.
         """
-        rows = []
-        for name in ("printed", *_FIXED):
-            row = {"controller": "FDSC, printed law" if name == "printed" else name}
-            for c in LAW_CASES:
-                row[f"energy {c}"] = self.energy[(name, 0.0, c)]
-            if name == "printed":
-                for c in LAW_CASES:
-                    row[f"switches {c} (dt; dt/2)"] = (f"{self.switches[(name, 0.0, c)]}; "
-                                                      f"{self.switches_half[(name, 0.0, c)]}")
-            rows.append(row)
+        rows = [{"controller": "FDSC, printed law" if name == "printed" else name,
+                 **{c: num(self.energy[(name, 0.0, c)]) for c in LAW_CASES}}
+                for name in ("printed", *_FIXED)]
+        rows.append({"controller": "FDSC, printed law: switches at dt → dt/2",
+                     **{c: _pair(self.switches[("printed", 0.0, c)],
+                                 self.switches_half[("printed", 0.0, c)]) for c in LAW_CASES}})
         return rows
+
+    def prose(self, extra: dict) -> dict:
+        """The numbers the chapter quotes, as text (:mod:`fdsc.paper.prose`).
+
+        Parameters
+        ----------
+        extra : dict
+            :func:`comparator_energies` at the study's step (the comparator set's members the
+            study does not run).
+
+        Returns
+        -------
+        dict of str
+            Per case ``c``: the printed law's energy ``ref_c`` and switch counts
+            ``refsw_c``/``refsw2_c`` (dt, dt/2); the best of the paper's three fixed gains
+            ``bestfixed_c`` and its energy ``bestfixed_e_c``; the chosen dwell-time law's energy
+            relative to the printed law ``dw_rel_c``, to the best of the three fixed gains
+            ``dw_vs_fixed_c``, its switch counts ``dw_sw_c``/``dw_sw2_c``; against the
+            comparator set (:func:`against_comparators`) the best member ``cmp_best_c``, the
+            factor ``cmp_ratio_c`` and all four as ``cmp_summary``. Per law ``l`` of
+            :data:`LAW_GRIDS`: ``default_l`` (the chosen parameter or "none"), ``nwell_l``,
+            ``ngrid_l``. The relative hysteresis at its largest margin (``hy_top``,
+            ``hy_sw_LF``, ``hy_sw2_LF``), the absolute one (``hya_grid``, ``hya_nwell``,
+            ``hya_only``: where it is well-posed; ``hya_big`` and ``hya_big_sw``: the largest
+            margin that is not, mixed case; ``hya_mid_sw``: the smallest margin, LF), the
+            window values that are well-posed ``win_ok`` and the 1 s window (``win1_*``), and
+            the step ``law_dt_ms``.
+        """
+        out = {"law_dt_ms": _param(self.dt * 1e3)}
+        tau = self.default("dwell")
+        for c in LAW_CASES:
+            ref = self.energy[("printed", 0.0, c)]
+            name, e = self.best_fixed(c)
+            out |= {f"ref_{c}": num(ref), f"refsw_{c}": count(self.switches[("printed", 0.0, c)]),
+                    f"refsw2_{c}": count(self.switches_half[("printed", 0.0, c)]),
+                    f"bestfixed_{c}": name, f"bestfixed_e_{c}": num(e)}
+            if tau is not None:
+                out |= {f"dw_rel_{c}": num(self.energy[("dwell", tau, c)] / ref),
+                        f"dw_vs_fixed_{c}": num(self.energy[("dwell", tau, c)] / e),
+                        f"dw_sw_{c}": count(self.switches[("dwell", tau, c)]),
+                        f"dw_sw2_{c}": count(self.switches_half[("dwell", tau, c)])}
+        cmp_rows = against_comparators(self, extra)
+        for r in cmp_rows:
+            out[f"cmp_best_{r['case']}"] = r["best fixed"]
+            out[f"cmp_ratio_{r['case']}"] = times(r["ratio"])
+        out["cmp_summary"] = ", ".join(f"{r['case']} {times(r['ratio'])}" for r in cmp_rows)
+        for law, grid in LAW_GRIDS.items():
+            d = self.default(law)
+            out |= {f"default_{law}": "none" if d is None else _param(d),
+                    f"nwell_{law}": count(sum(self.well_posed(law, q) for q in grid)),
+                    f"ngrid_{law}": count(len(grid))}
+        h_top = LAW_GRIDS["hysteresis"][-1]
+        out |= {"hy_top": _param(h_top), "hy_sw_LF": count(self.switches[("hysteresis", h_top, "LF")]),
+                "hy_sw2_LF": count(self.switches_half[("hysteresis", h_top, "LF")])}
+        grid = LAW_GRIDS["hysteresis_abs"]
+        ok = [q for q in grid if self.well_posed("hysteresis_abs", q)]
+        quiet = all(self.switches[("hysteresis_abs", q, c)] == 0 for q in ok for c in LAW_CASES)
+        out["hya_only"] = ("at none of the margins" if not ok else
+                           f"h ≥ {_param(min(ok))}" + (", where the law never leaves its initial mode"
+                                                    if quiet else ""))
+        out["hya_grid"] = "; ".join(_param(q) for q in grid)
+        out["hya_nwell"] = count(len(ok))
+        bad = [q for q in grid if q not in ok]
+        if bad:
+            h_big = max(bad)
+            out["hya_big"] = _param(h_big)
+            out["hya_big_sw"] = _pair(self.switches[("hysteresis_abs", h_big, "mixed")],
+                                      self.switches_half[("hysteresis_abs", h_big, "mixed")])
+        out["hya_mid_sw"] = _pair(self.switches[("hysteresis_abs", grid[0], "LF")],
+                                  self.switches_half[("hysteresis_abs", grid[0], "LF")])
+        w_ok = [q for q in LAW_GRIDS["window"] if self.well_posed("window", q)]
+        out["win_ok"] = ", ".join(_param(q) for q in w_ok) if w_ok else "none"
+        w1 = 1.0
+        out |= {"win1": _param(w1),
+                "win1_rel_LF": num(self.energy[("window", w1, "LF")] / self.energy[("printed", 0.0, "LF")]),
+                "win1_rel_mixed": num(self.energy[("window", w1, "mixed")]
+                                      / self.energy[("printed", 0.0, "mixed")]),
+                "win1_sw_LF": count(self.switches[("window", w1, "LF")]),
+                "win1_sw2_LF": count(self.switches_half[("window", w1, "LF")])}
+        return out
 
 
 @cached
@@ -577,6 +760,19 @@ class DwellLawCheck:
     horizon: float
     final_ratio: np.ndarray
     switches: np.ndarray
+
+    def prose(self) -> dict:
+        """The numbers the chapter quotes, as text (:mod:`fdsc.paper.prose`).
+
+        Returns
+        -------
+        dict of str
+            ``tau`` (s), ``n`` (runs), ``h`` (horizon, s), ``ratio`` (largest
+            ‖x(T)‖/‖x(0)‖), ``sw`` (most switches of a run) and ``swbound`` (horizon/τ_d).
+        """
+        return {"tau": num(self.tau), "n": count(self.final_ratio.size), "h": _param(self.horizon),
+                "ratio": num(float(self.final_ratio.max())), "sw": count(int(self.switches.max())),
+                "swbound": count(int(self.horizon // self.tau))}
 
 
 @cached
@@ -678,6 +874,28 @@ def against_comparators(study: LawStudy, extra: dict, law: str = "dwell",
     return rows
 
 
+def comparator_table(rows: list) -> list:
+    """:func:`against_comparators` as text (:mod:`fdsc.paper.prose`), for
+    :func:`fdsc.paper.report.html_table` (a table may show a subset of the columns).
+
+    Parameters
+    ----------
+    rows : list of dict
+        :func:`against_comparators`.
+
+    Returns
+    -------
+    list of dict
+        Keys ``case``, ``best fixed``, ``best fixed energy``, ``law energy``, ``ratio`` (a
+        factor) and every member's name (its energy).
+    """
+    return [{"case": r["case"], "best fixed": r["best fixed"],
+             "best fixed energy": num(r["best fixed energy"]), "law energy": num(r["law energy"]),
+             "ratio": times(r["ratio"]),
+             **{k.removeprefix("energy "): num(v) for k, v in r.items() if k.startswith("energy ")}}
+            for r in rows]
+
+
 def _sliding_entry(regions, conv):
     spread = {c: conv.energy_spread(c) for c in conv.cases()}
     rec = {"angular_share_d0": {q: dict(zip(REGION_KINDS, map(float, s), strict=True))
@@ -693,11 +911,12 @@ def _sliding_entry(regions, conv):
            "energy_spread": spread}
     return entry("sliding", "paper Remark 7 (sliding motion assumed absent; nothing printed)", None,
                  rec, "new",
-                 "the printed law with the measured xdot: inside the set where neither mode holds "
-                 "itself the sampled law switches at every sample (share of mode 1 there -> 1/2), and "
-                 "on the border of that set it slides (mode 1 at every other sample); time shares and "
-                 "switches x dt converge as dt -> 0 while the energy scatters by a few per cent "
-                 "without a trend; the actuator rate |du|/dt grows like 1/dt", horizon=conv.horizon)
+                 "The printed law with the measured ẋ: inside the set where neither mode holds "
+                 "itself (the chattering region) the sampled law switches at every sample (mode 1's "
+                 "share there tends to ½), and on the border of that set it slides (mode 1 at every "
+                 "other sample); time shares and switch count × dt converge as dt → 0 while the "
+                 "energy scatters by a few per cent without a trend; the actuator rate ‖Δu‖/dt "
+                 "grows like 1/dt.", horizon=conv.horizon)
 
 
 def _law_record(study, law):
@@ -742,13 +961,13 @@ def record_part() -> RecordPart:
         _sliding_entry(regions, conv),
         entry("hysteresis_dwell", "paper Remark 7 (hysteresis, minimum dwell time; nothing printed)",
               None, hd, "new",
-              "energies and switch counts at dt and dt/2 of the hysteresis (relative and absolute "
-              "margin) and minimum-dwell-time laws on the paper's stationary, mixed (rho_p = 0.1) "
-              "and piecewise (T = 500 s, rho_t = 0.2) cases; a law is well-posed here if its "
-              "switch count does not grow when dt halves"),
+              "Energies and switch counts at dt and dt/2 of the hysteresis (relative and absolute "
+              "margin) and minimum-dwell-time laws on the paper's stationary, mixed (ρ_p = 0.1) "
+              "and piecewise (T = 500 s, ρ_t = 0.2) cases; a law is well-posed here if its "
+              "switch count does not grow when dt halves."),
         entry("eef_switching", "paper Remark 6 (an FD-EEF-based law; nothing printed)", None,
               {"window": _law_record(study, "window"), "reference": reference,
                "cases": list(LAW_CASES), "dt": study.dt}, "new",
-              "the law on the score averaged over the last T_w seconds (the FD-EEF of the recent "
-              "past per unit time), measured xdot, against T_w"),
+              "The law on the score averaged over the last T_w seconds (the FD-EEF of the recent "
+              "past per unit time), with the measured ẋ, against T_w."),
     ))

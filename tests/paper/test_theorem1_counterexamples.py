@@ -16,6 +16,7 @@ from fdsc.paper.theorem1_counterexamples import (
     residues,
     search_case,
     smallest_case,
+    smallest_table,
 )
 from fdsc.switching import certify_q, theorem1_matrices
 
@@ -148,3 +149,61 @@ def test_clean_runs_are_measured_and_do_not_chatter():
     assert len(rows) == len(search.diagnoses)
     assert sum(r["clean"] == "yes" for r in rows) == len(clean)
     assert all("previous" not in str(v) for r in rows for v in r.values())
+
+
+def test_tables_and_prose_are_text_for_readers():
+    search = counterexample_search()
+    p = search.prose()
+    assert all(isinstance(v, str) for v in p.values())
+    causes = search.causes()
+    assert p["cause_measured_V"] == str(causes["previous"]["V jumps up at switches"])
+    for rows in (search.family_table(), search.diagnosis_table(), search.dwell_rows(),
+                 gap_closing().paper_rows(), [r.table_row() for r in residues()],
+                 smallest_table(search)):
+        assert rows and all(isinstance(v, str) for r in rows for v in r.values())
+        # no code names of the readings of ẋ, no raw complex numbers
+        text = " ".join(f"{k} {v}" for r in rows for k, v in r.items())
+        assert "previous" not in text and "candidate)" not in text.replace("candidate ẋ)", "")
+        assert "j)" not in text and "(-" not in text
+
+
+def test_the_divergence_monitor_flags_every_clean_certified_counterexample():
+    # the book's own search: each clean divergent run (printed law, measured ẋ, few one-sample
+    # dwells) is a pair of Hurwitz modes with Q's that Theorem 1 certifies. The simulators must
+    # flag them once the state passes the monitor's bound (10⁶ times what either mode reaches
+    # alone); these grow by ×6 to ×10⁹³ over the search's horizon T, so 16 T suffices for all.
+    import warnings
+
+    from fdsc import Case, Sinusoids, UnstableRunWarning, simulate_batch
+    from fdsc.paper.theorem1_counterexamples import counterexample_search
+
+    search = counterexample_search()
+    clean = search.clean()
+    assert len(clean) >= 4
+    zero = Sinusoids([0.0], [1.0])
+    cases = []
+    for d in clean:
+        c = search.case(d.family, d.seed)
+        o = next(o for o in search.outcomes if (o.family, o.seed, o.law) == (d.family, d.seed, d.law))
+        assert c.status == "feasible" and all(np.isfinite(c.gammas))         # certified
+        assert all(np.linalg.eigvals(m.A).real.max() < 0 for m in c.modes)   # both Hurwitz
+        dt, T = c.grid()
+        for step in (dt, dt / 2):
+            # the shortest of T, 4 T, 16 T at which the run is flagged (a longer one may overflow,
+            # which simulate_stream refuses to summarize: UnstableError)
+            for m in (1, 4, 16):
+                with warnings.catch_warnings(record=True) as caught:
+                    warnings.simplefilter("always")
+                    r = simulate_stream(c.modes, zero, m * T, step, x0=o.worst_x0, law_bands=c.bands,
+                                        law_Q=c.Q, law=d.law)
+                flagged = [w for w in caught if issubclass(w.category, UnstableRunWarning)]
+                if flagged:
+                    break
+            assert flagged and "diverges: at t = " in str(flagged[0].message), (d.family, d.seed, step)
+            assert r.grew_at <= m * T and r.growth > 1e6
+        cases.append(Case(c.modes, zero, m * T, dt / 2, x0=o.worst_x0, law_bands=c.bands, law_Q=c.Q,
+                          law=d.law))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UnstableRunWarning)
+        batch = simulate_batch(cases)
+    assert batch.diverged.all()

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from fdsc.paper import three_mode as tm
+from fdsc.paper.prose import num
 
 
 def test_score_weights_printed_mf_negative_second_order_in_band():
@@ -57,3 +58,27 @@ def test_record_entry():
     part = tm.record_part()
     (e,) = part.entries
     assert e["id"] == "three_mode" and e["verdict"] == "new" and e["paper"] is None
+
+
+def test_prose_and_table_are_text_with_reader_names(short_table):
+    t = short_table
+    p = t.prose()
+    assert all(isinstance(v, str) for v in p.values())
+    # the worst MF ratio of the three-mode law, as fdsc.paper.prose prints it
+    worst = max(t.value(f"MF tone {w:g} rad/s", "FDSC-3 (2nd order, Q = I)") for w in tm.MF_TONES)
+    assert p["mf3_max"] == num(worst)
+    rows = t.table()
+    assert len(rows) == len(t.controllers) and all(isinstance(v, str) for r in rows for v in r.values())
+    names = [r["controller"] for r in rows]
+    assert "FDSC-2 (printed Q)" in names and not any("Q's" in n for n in names)
+    assert tm.display_name("LF -> MF -> HF") == "LF → MF → HF"
+    sw = tm.score_weights([0.5, 0.99, 1.01, 5.0, 9.99, 10.01]).prose()
+    # printed MF weight −(ω² + ϖ₁ϖ₂) at its largest, ω = 0.5: −10.25, to 3 significant digits
+    assert sw == {"printed_mf_max": "−10.2", "mf_lo": "1.01", "mf_hi": "9.99"}
+    fd = tm.xddot_cost(horizon=3.0, steps=(1, 10)).prose()
+    assert set(fd) == {"fd_1", "fd_10", "fd_ms_1", "fd_ms_10"} and fd["fd_ms_10"] == "10"
+
+
+def test_record_note_has_no_code_formatting():
+    (e,) = tm.record_part().entries
+    assert "Psi" not in e["note"] and "x''" not in e["note"] and "gammas" not in e["note"]
