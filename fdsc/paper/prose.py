@@ -54,6 +54,8 @@ def num(x, digits=3):
     ('7.00', '0.436', '22.5', '119', '1.15 × 10⁷', '37,493')
     >>> num(-0.0128), num(2.7e-26, 2), num(float("inf")), num(1092.79), num(999.7)
     ('−0.0128', '2.7 × 10⁻²⁶', '∞', '1,093', '1,000')
+    >>> num(1072.4, 4), num(1234.5678, 6)
+    ('1,072', '1,234.57')
     """
     if isinstance(x, Integral) and not isinstance(x, bool | np.bool_):
         return count(x)
@@ -69,7 +71,10 @@ def num(x, digits=3):
         return f"{mantissa} × 10{str(int(exponent)).translate(_SUPERSCRIPT)}".replace("-", "−")
     if abs(v) >= 10 ** digits - 0.5:   # more integer digits than asked: the whole number
         return count(round(v)) if abs(round(v)) < 100_000 else num(float(round(v)), digits)
-    return f"{v:#.{digits}g}".rstrip(".").replace("-", "−")
+    text = f"{v:#.{digits}g}"
+    if abs(v) >= 1000:       # thousands separators, as count() prints whole numbers
+        text = f"{v:,.{len(text.partition('.')[2])}f}"
+    return text.rstrip(".").replace("-", "−")
 
 
 def count(n):
