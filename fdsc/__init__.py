@@ -29,9 +29,9 @@ _EXPORTS = {
               "random_dwell_signal", "switched_states"),
     "energy": ("PowerSplit", "average_power", "fdeef", "fdeef_autonomous", "fdeef_parseval_autonomous",
                "instantaneous_power", "steady_state_power"),
-    "exceptions": ("BandError", "DimensionError", "FdscError", "InfeasibleError", "IterationLimitError",
-                   "MemoryLimitError", "SingularFrequencyError", "SolverError", "UnstableError",
-                   "UnstableRunWarning", "VerificationError"),
+    "exceptions": ("BandError", "DimensionError", "EnergyOverflowError", "FdscError", "InfeasibleError",
+                   "IterationLimitError", "MemoryLimitError", "SingularFrequencyError", "SolverError",
+                   "UnstableError", "UnstableRunWarning", "VerificationError"),
     "frequency": ("BandPeak", "band_peak", "freqresp", "sigma_max", "steady_state_gain", "steady_state_gains",
                   "steady_state_gains"),
     "lmi": ("GKYPResult", "gkyp_certify", "gkyp_gamma"),
@@ -112,6 +112,7 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers and editors
     from .exceptions import (
         BandError,
         DimensionError,
+        EnergyOverflowError,
         FdscError,
         InfeasibleError,
         IterationLimitError,
@@ -183,5 +184,5 @@ __all__ = [
     # exceptions
     "FdscError", "BandError", "DimensionError", "SolverError", "InfeasibleError",
     "VerificationError", "IterationLimitError", "UnstableError", "SingularFrequencyError",
-    "MemoryLimitError", "UnstableRunWarning",
+    "MemoryLimitError", "EnergyOverflowError", "UnstableRunWarning",
 ]

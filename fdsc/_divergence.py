@@ -43,6 +43,8 @@ last point (n comparisons per block); :func:`fdsc.simulate.simulate` checks its 
 with one vectorized maximum after the run.
 """
 
+import math
+
 import numpy as np
 from scipy.linalg import solve_continuous_lyapunov
 
@@ -53,6 +55,23 @@ __all__ = []
 #: The monitor's safety factor: a run is flagged when its state exceeds SAFETY times the largest
 #: state any of its modes reaches alone from the same initial state under the same input.
 SAFETY = 1e6
+
+
+def norm(v) -> float:
+    """The Euclidean norm of ``v`` without overflow on the way (``np.linalg.norm`` squares the
+    entries: ``[1e200]`` would give ``inf``).
+
+    Examples
+    --------
+    >>> norm([3.0 * 2.0**700, 4.0 * 2.0**700]) == 5.0 * 2.0**700, norm([0.0, 0.0])
+    (True, 0.0)
+    """
+    v = np.asarray(v, dtype=float).ravel()
+    big = float(np.abs(v).max()) if v.size else 0.0
+    if big == 0.0 or not np.isfinite(big):
+        return big
+    e = math.frexp(big)[1]          # scaled by a power of two: exact
+    return math.ldexp(float(np.sqrt(np.sum(np.ldexp(v, -e) ** 2))), e)
 
 
 def input_bound(d) -> float:
@@ -100,7 +119,7 @@ def state_bound(A_modes, B, x0, d) -> float:
     ...             Sinusoids([0.5], [1.0]))
     1.5
     """
-    x0n = float(np.linalg.norm(np.asarray(x0, dtype=float)))
+    x0n = norm(x0)
     dm = input_bound(d)
     B = np.asarray(B, dtype=float).reshape(len(np.asarray(A_modes[0])), -1)
     return max(mode_bound(a, B, x0n, dm) for a in A_modes)

@@ -50,6 +50,10 @@ class DwellTimeBound:
         Solves that ended without a verified certificate other than by infeasibility (a solver
         stop or a failed eigenvalue check near the boundary of the feasible set); each counts as
         "not certified" there, which can only make μ larger, never invalid.
+    A : tuple of (n, n) ndarray, optional
+        The modes' state matrices A_i the certificate was computed for (set by
+        :func:`~fdsc.dwell.dwell_time_bound`; :func:`~fdsc.dwell.check_dwell_bound` compares
+        the modes it is given with them). None for a certificate assembled by hand.
 
     Notes
     -----
@@ -72,9 +76,13 @@ class DwellTimeBound:
     min_eig_P: np.ndarray
     n_solves: int
     n_failed: int
+    A: tuple | None = None
 
     def __post_init__(self):
         object.__setattr__(self, "P", tuple(frozen_array(p) for p in self.P))
+        if self.A is not None:
+            object.__setattr__(self, "A", tuple(frozen_array(np.asarray(a, dtype=float))
+                                                for a in self.A))
         for name in ("decay_limits", "decays", "mus", "mus_crude", "taus", "taus_crude",
                      "max_eigs", "min_eig_P"):
             object.__setattr__(self, name, frozen_array(np.asarray(getattr(self, name), dtype=float)))

@@ -12,7 +12,7 @@ import numpy as np
 from scipy.linalg import expm
 
 from ._dwell_bound import DwellTimeBound
-from ._dwell_lmi import _mode_matrices
+from ._dwell_lmi import _decay_eigs, _mode_matrices
 from ._validation import (
     as_count,
     as_nonnegative,
@@ -23,6 +23,13 @@ from ._validation import (
 )
 
 __all__ = []
+
+#: Most switches :func:`random_dwell_signal` draws: it refuses a ``horizon / min_dwell`` above
+#: this (the signal's lists grow by one entry per switch).
+MAX_SWITCHES = 10**7
+#: Relative tolerance of :func:`check_dwell_bound`'s comparison of the modes it is given with the
+#: certificate's (the same matrices, up to the rounding of recomputing a closed loop).
+MODES_RTOL = 1e-9
 
 
 @dataclass(frozen=True)
@@ -259,7 +266,9 @@ def random_dwell_signal(rng: np.random.Generator, n_modes: int, min_dwell: float
     TypeError
         If ``rng`` is not a ``numpy.random.Generator``.
     ValueError
-        If an argument is out of range.
+        If an argument is out of range, or ``horizon / min_dwell`` exceeds
+        :data:`MAX_SWITCHES` (the signal could switch that often; the message names
+        ``min_dwell``).
 
     Examples
     --------
@@ -274,10 +283,16 @@ def random_dwell_signal(rng: np.random.Generator, n_modes: int, min_dwell: float
     max_dwell = 2 * min_dwell if max_dwell is None else as_positive("max_dwell", max_dwell)
     if max_dwell < min_dwell:
         raise ValueError(f"max_dwell must be >= min_dwell = {min_dwell:g}, but found {max_dwell:g}")
+    if horizon / min_dwell > MAX_SWITCHES:
+        raise ValueError(f"min_dwell ({min_dwell:g} s) allows up to horizon / min_dwell = "
+                         f"{horizon / min_dwell:.3g} switches in the horizon ({horizon:g} s), more "
+                         f"than MAX_SWITCHES = {MAX_SWITCHES:.0e}; enlarge min_dwell or shorten the "
+                         "horizon")
     seq = [int(rng.integers(n_modes))]
     times = []
     t = float(rng.uniform(min_dwell, max_dwell))
-    # every step advances t by at least min_dwell > 0: at most horizon/min_dwell iterations
+    # every step advances t by at least min_dwell ≥ horizon / MAX_SWITCHES (far above the
+    # rounding of t < horizon): at most MAX_SWITCHES iterations
     while t < horizon:
         times.append(t)
         seq.append(int((seq[-1] + rng.integers(1, n_modes)) % n_modes))
@@ -334,6 +349,27 @@ class DwellCheck:
         return bool(self.max_ratio <= 1 + rtol and decay_ok)
 
 
+def _check_modes(bound, A):
+    """Raise ValueError naming ``modes`` unless ``A`` are the certificate's modes (or, for a
+    certificate that does not hold them, unless its P_i satisfy the decay inequality for ``A``)."""
+    if bound.A is not None:
+        for k, (a, ref) in enumerate(zip(A, bound.A, strict=True)):
+            scale = float(np.abs(ref).max())
+            if not np.allclose(a, ref, rtol=MODES_RTOL, atol=MODES_RTOL * scale):
+                raise ValueError(f"modes must be the modes of the certificate, but modes[{k}] "
+                                 f"differs from its A_{k} by up to {float(np.abs(a - ref).max()):.3g} "
+                                 f"(its entries are up to {scale:.3g})")
+        return
+    eigs = _decay_eigs(A, bound.P, bound.decay)
+    scale = np.array([np.linalg.norm(a, 2) * np.linalg.norm(p, 2) for a, p in zip(A, bound.P, strict=True)])
+    bad = np.flatnonzero(eigs > MODES_RTOL * scale)
+    if bad.size:
+        k = int(bad[0])
+        raise ValueError(f"modes must be modes the certificate holds for, but modes[{k}] violates "
+                         f"A'P + PA <= -2*decay*P with its P_{k} (largest eigenvalue "
+                         f"{eigs[k]:.3g} > 0)")
+
+
 def check_dwell_bound(bound: DwellTimeBound, modes, x0, switch_times, sequence, t) -> DwellCheck:
     """Check the Lyapunov envelope of a dwell-time certificate along a switching signal (d = 0).
 
@@ -342,7 +378,9 @@ def check_dwell_bound(bound: DwellTimeBound, modes, x0, switch_times, sequence, 
     bound : DwellTimeBound
         The certificate (its P_i, λ and μ).
     modes : list of (n, n) array_like or LTISystem
-        The modes the certificate was computed for.
+        The modes the certificate was computed for: their A_i must equal the certificate's
+        (to a relative :data:`MODES_RTOL`); for a certificate without them (``bound.A`` None)
+        its P_i must satisfy the decay inequality A_iᵀP_i + P_iA_i ⪯ −2λP_i for these modes.
     x0 : (n,) array_like
         Initial state (nonzero).
     switch_times, sequence : array_like
@@ -359,8 +397,8 @@ def check_dwell_bound(bound: DwellTimeBound, modes, x0, switch_times, sequence, 
     TypeError
         If ``bound`` is not a :class:`DwellTimeBound`.
     ValueError
-        If the modes do not match the certificate, ``x0`` is zero, ``t`` does not start at 0,
-        or the signal is malformed.
+        If the modes do not match the certificate (their number, size or matrices; the message
+        names ``modes``), ``x0`` is zero, ``t`` does not start at 0, or the signal is malformed.
 
     Notes
     -----
@@ -380,6 +418,7 @@ def check_dwell_bound(bound: DwellTimeBound, modes, x0, switch_times, sequence, 
     if len(A) != len(bound.P) or A[0].shape != bound.P[0].shape:
         raise ValueError(f"modes must be the {len(bound.P)} modes of the certificate, but found "
                          f"{len(A)} of size {A[0].shape}")
+    _check_modes(bound, A)
     x0 = as_vector("x0", x0, A[0].shape[0])
     if not np.any(x0):
         raise ValueError("x0 must be nonzero")

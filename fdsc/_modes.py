@@ -47,6 +47,10 @@ def _shared_input(modes, where=""):
                              f"mode {k} differs from mode 0")
     if B.shape[1] != 1:
         raise ValueError(f"{where}the disturbance must be scalar (B of shape (n, 1)), found {B.shape}")
+    if modes[0].C.shape[0] == 0:
+        # z would be empty: every energy 0 and every L2 ratio 0, whatever the loop does
+        raise ValueError(f"{where}modes have no regulated output: C has shape {modes[0].C.shape} "
+                         "(0 rows), so the energy of z would be 0; give C (and D) at least one row")
     return n, B, D
 
 
@@ -92,6 +96,13 @@ def _law_weights(n, n_modes, law_bands, law_Q, law_weights, where=""):
                              + (f" of length {len(value)}" if isinstance(value, list | tuple) else ""))
     if not all(isinstance(b, Band) for b in law_bands):
         raise TypeError(f"{where}law_bands must be a list of fdsc.Band")
+    for i, b in enumerate(law_bands):
+        if b.is_complex:
+            # as certify_q and FDSC refuse it: Re Ψ of an MF range is negative definite, so its
+            # mode's score is never positive and the mode is chosen only when every other loses
+            raise ValueError(f"{where}law_bands[{i}] is an MF range ({b.label}): the switching law "
+                             "is implemented for real Ψ (LF, HF, entire), as Theorem 1; it sees "
+                             "only Re Ψ of an MF range, whose score is never positive")
     Qs = []
     for i, Q in enumerate(law_Q):
         try:

@@ -3,6 +3,7 @@
 the group's sizes when it is long enough, on a pool of threads. Internal.
 """
 
+import dataclasses
 import functools
 import warnings
 from concurrent.futures import ThreadPoolExecutor
@@ -49,7 +50,38 @@ def _run(preps, kernel, threads, closed_form=True, specialize=None):
     for members, (_, results) in planned:
         for i, res in zip(members, results(), strict=True):
             closed[i] = res
-    return closed
+    return [_unscaled(res, q["scale_exp"]) for res, q in zip(closed, preps, strict=True)]
+
+
+def _unscaled(res, e):
+    """The result of a run made at scale 2^−e (:func:`fdsc._stream_setup._scale_exponent`) in
+    the caller's units: states, outputs and inputs times 2^e, energies times 2^2e (exact: powers
+    of two). An energy that was finite at scale and is not in the caller's units exceeds the
+    float range: it is left ``inf`` here and refused by the callers (:class:`EnergyOverflowError
+    <fdsc.exceptions.EnergyOverflowError>`)."""
+    if e == 0:
+        return res
+    with np.errstate(over="ignore"):
+        def big(a):
+            return np.ldexp(a, e)
+
+        def bigger(a):
+            return np.ldexp(a, 2 * e)
+
+        trace = res.trace
+        if trace is not None:
+            trace = dataclasses.replace(trace, x_lo=big(trace.x_lo), x_hi=big(trace.x_hi),
+                                        z_lo=big(trace.z_lo), z_hi=big(trace.z_hi),
+                                        d_lo=big(trace.d_lo), d_hi=big(trace.d_hi))
+        return dataclasses.replace(
+            res, energy=float(bigger(res.energy)), input_energy=float(bigger(res.input_energy)),
+            energy_cum=bigger(res.energy_cum), input_energy_cum=bigger(res.input_energy_cum),
+            x_final=big(res.x_final), trace=trace)
+
+
+def energy_overflow(res) -> bool:
+    """True if a run's state stayed finite but an energy exceeds the float range."""
+    return res.diverged_at is None and not (np.isfinite(res.energy) and np.isfinite(res.input_energy))
 
 
 def _closed_form_applies(pr):
@@ -229,7 +261,7 @@ def _result(pr, c, st, sums, share_steps, dwell_counts, cum, tr_lo, tr_hi, tr_sh
         x_final=x_out[c, :n].copy(), sigma_final=int(info[c, 1]), t_cum=t_cum, energy_cum=e_cum,
         input_energy_cum=d_cum, trace=trace, diverged_at=None if diverged < 0 else diverged * dt,
         grew_at=None if info[c, 2] < 0 else int(info[c, 2]) * dt,
-        growth=None if info[c, 2] < 0 else float(sums[c, 3]) / pr["x_bound"])
+        growth=None if info[c, 2] < 0 else float(sums[c, 3]) / pr["x_bound"])   # both at scale
 
 
 def _warn_unstable_modes(pr, res, where, stacklevel):

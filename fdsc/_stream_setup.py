@@ -4,17 +4,20 @@ padded arrays of the compiled loop (:mod:`fdsc._stream_loop`). Internal.
 """
 
 import math
+import warnings
 
 import numpy as np
 from scipy.linalg import expm
 
 from . import _divergence
+from ._defaults import DEFAULT_MAX_MEMORY
 from ._modes import LAWS, _as_modes, _law_weights, _shared_input
 from ._simulate_kernel import PHASOR_BLOCK, break_index, check_resolved, rotations
 from ._stream_types import Case
 from ._validation import as_choice, as_count, as_positive, as_vector, check_type
+from .exceptions import MemoryLimitError
 from .frequency import check_no_pole_at
-from .rules import SwitchRule, rule_state
+from .rules import SwitchRule, _rule_steps, rule_state
 from .signals import Piecewise, Sampled, Sinusoids
 
 __all__ = []
@@ -38,6 +41,26 @@ def _steps_of(name, seconds, dt, where, *, even=False):
     return k
 
 
+def _check_memory(where, N, nm, n, p, cum_steps, trace_steps, window_steps, sizes, max_memory):
+    """Refuse a run whose per-run outputs would exceed ``max_memory`` bytes, before they are
+    allocated: the coarse grid (its two running integrals and the result's three arrays), the
+    traces (min and max of x, z, d and the mode shares per bin, twice: loop and result) and the
+    moving window's (L, I) samples. ``sizes`` names the arguments (their values in s)."""
+    parts = {
+        "cumulative_every": 5 * ((N - 1) // cum_steps + 1) if cum_steps else 0,
+        "trace_every": 2 * (2 * (n + p + 1) + nm + 1) * -(-N // trace_steps) if trace_steps else 0,
+        "rule.window": nm * window_steps if window_steps > 1 else 0,
+    }
+    need = 8 * sum(parts.values())
+    if need > max_memory:
+        name = max(parts, key=parts.get)
+        raise MemoryLimitError(
+            f"{where}{name} = {sizes[name]!r} s on {N} points needs about {8 * parts[name] / 2**30:.3g} "
+            f"GiB ({need / 2**30:.3g} GiB for the run's outputs in all), more than max_memory = "
+            f"{max_memory / 2**30:.3g} GiB; {'shorten' if name == 'rule.window' else 'enlarge'} "
+            f"{name}, shorten the horizon or raise max_memory")
+
+
 def _segments(d, N, dt, where):
     """Point segments [start_s, start_{s+1}) and their Sinusoids (None: d = 0 there)."""
     if isinstance(d, Sinusoids):
@@ -53,7 +76,49 @@ def _segments(d, N, dt, where):
     return starts + [N], parts
 
 
-def _prepare(case, where, cumulative_every, trace_every, dwell_edges):
+#: Runs whose samples may exceed 2^SCALE_LIMIT run scaled down to it by a power of two: their
+#: squares (≤ 2^800 per output) then sum over 2^62 steps without overflow.
+SCALE_LIMIT = 400
+
+
+def _scale_exponent(A, B, C, D, x0, d):
+    """The exponent e ≥ 0 by which a run is scaled (x0 and d times 2^−e): 0 unless a bound of
+    its samples (x0, d, and z = C x + D d with x within the modes' bound of
+    :mod:`fdsc._divergence`) exceeds 2^SCALE_LIMIT.
+
+    The simulated loop is linear in (x0, d) and the switching law's scores are quadratic forms of
+    them (an absolute hysteresis margin is scaled by 2^−2e with them), so a run scaled by a power
+    of two makes the same decisions and its samples are the unscaled ones times 2^−e, exactly
+    (barring underflow of components below 2^(e − 1022) of the largest): its energies are its
+    scaled energies times 2^2e, and they overflow only if the true energy exceeds the float
+    range."""
+    dm = _divergence.input_bound(d)
+    x0n = _divergence.norm(x0)
+    R = _divergence.state_bound(A, B[:, None], x0, d)
+    if not np.isfinite(R):
+        R = x0n + dm
+    with np.errstate(over="ignore"):
+        mag = max(x0n, dm, max(float(np.linalg.norm(c, 2)) for c in C) * R
+                  + float(np.linalg.norm(D)) * dm)
+    if not mag > 2.0 ** SCALE_LIMIT:
+        return 0
+    if not np.isfinite(mag):
+        mag = max(x0n, dm) * 2.0 ** 64
+    return max(0, math.frexp(mag)[1] - SCALE_LIMIT) if np.isfinite(mag) else 1023
+
+
+def _scaled_signal(d, e):
+    """``d`` times 2^−e (the same object for e = 0)."""
+    if e == 0:
+        return d
+    if isinstance(d, Sinusoids):
+        return Sinusoids(np.ldexp(d.amplitudes, -e), d.frequencies, d.phases)
+    if isinstance(d, Piecewise):
+        return Piecewise(d.breaks, [_scaled_signal(q, e) for q in d.parts])
+    return Sampled(np.ldexp(d.values, -e), d.dt, d.hold)
+
+
+def _prepare(case, where, cumulative_every, trace_every, dwell_edges, max_memory=DEFAULT_MAX_MEMORY):
     check_type(f"{where}case", case, Case)
     modes = _as_modes(case.modes)
     n, B, D = _shared_input(modes, where)
@@ -62,6 +127,9 @@ def _prepare(case, where, cumulative_every, trace_every, dwell_edges):
     law = as_choice(f"{where}law", case.law, LAWS)
     W = _law_weights(n, nm, case.law_bands, case.law_Q, case.law_weights, where)
     check_type(f"{where}rule", case.rule, SwitchRule)
+    if nm == 1 and not case.rule.is_printed:
+        warnings.warn(f"{where}rule ({case.rule.describe()}) has no effect on a single mode: the "
+                      "run is the fixed-gain run", UserWarning, stacklevel=3)
     sigma0 = as_count(f"{where}sigma0", case.sigma0, 0)
     if sigma0 >= nm:
         raise ValueError(f"{where}sigma0 must be a mode index in [0, {nm}), found {sigma0}")
@@ -74,30 +142,46 @@ def _prepare(case, where, cumulative_every, trace_every, dwell_edges):
         raise ValueError(f"{where}horizon / dt = {steps:.3g} steps: at most {MAX_STEPS:.3g} steps "
                          "(the step index is a 64-bit integer); enlarge dt or shorten the horizon")
     N = steps + 1
+    cum_steps = 0 if cumulative_every is None else _steps_of(
+        "cumulative_every", cumulative_every, dt, where, even=True)
+    if cum_steps > steps:
+        raise ValueError(f"{where}cumulative_every ({cumulative_every:g} s) exceeds the horizon "
+                         f"({horizon:g} s): the coarse grid would hold one point")
+    trace_steps = 0 if trace_every is None else _steps_of("trace_every", trace_every, dt, where)
+    _check_memory(where, N, nm, n, p, cum_steps, trace_steps, _rule_steps(case.rule, dt, steps, where)[1],
+                  {"cumulative_every": cumulative_every, "trace_every": trace_every,
+                   "rule.window": case.rule.window}, as_positive(f"{where}max_memory", max_memory))
     x0 = np.zeros(n) if case.x0 is None else np.array(as_vector(f"{where}x0", case.x0, n))
     A = np.array([m.A for m in modes])
     C = np.array([m.C for m in modes])
     Phi = np.array([expm(a * dt) for a in A])
     check_type(f"{where}d", case.d, Sinusoids | Piecewise | Sampled,
                "an fdsc.signals.Sinusoids, Piecewise or Sampled")
-    rparams, ring, _, _ = rule_state(case.rule, dt, nm)
+    rparams, ring, _, _ = rule_state(case.rule, dt, nm, steps, where)
+    # a run whose samples could reach the square root of the float range runs scaled by 2^−e
+    # (exact: every sum and score scales by a power of two; see _scale_exponent)
+    e = _scale_exponent(A, B, C, D, x0, case.d)
+    d = _scaled_signal(case.d, e)
+    x0 = np.ldexp(x0, -e)
+    if e and not rparams[1]:
+        rparams[0] = math.ldexp(rparams[0], -2 * e)      # an absolute margin is in score units
     out = dict(N=N, dt=dt, nm=nm, n=n, p=p, Phi=Phi, A=A, B=B, C=C, D=D, W=W, law=_LAW_CODE[law],
                sigma0=sigma0, x0=x0, horizon=steps * dt, modes=modes, rparams=rparams,
-               ring_len=ring.shape[0])
+               ring_len=ring.shape[0], scale_exp=e)
     # the divergence monitor's bound (fdsc._divergence); off for one mode, which cannot exceed it
-    out["x_bound"] = _divergence.state_bound(A, B[:, None], x0, case.d) if nm > 1 else np.inf
-    if isinstance(case.d, Sampled):
-        if abs(case.d.dt - dt) > 1e-12 * dt:
-            raise ValueError(f"{where}d is sampled every {case.d.dt!r} s but the run steps by "
+    out["x_bound"] = _divergence.state_bound(A, B[:, None], x0, d) if nm > 1 else np.inf
+    if isinstance(d, Sampled):
+        if abs(d.dt - dt) > 1e-12 * dt:
+            raise ValueError(f"{where}d is sampled every {d.dt!r} s but the run steps by "
                              f"dt = {dt!r} s; they must be equal")
-        if case.d.values.size < N:
-            raise ValueError(f"{where}d has {case.d.values.size} samples but the horizon needs {N}")
+        if d.values.size < N:
+            raise ValueError(f"{where}d has {d.values.size} samples but the horizon needs {N}")
         G0, G1 = _hold_matrices(A, B, dt)
-        out.update(kind=_KIND_ZOH if case.d.hold == "zoh" else _KIND_FOH, u=case.d.values[:N],
+        out.update(kind=_KIND_ZOH if d.hold == "zoh" else _KIND_FOH, u=d.values[:N],
                    G0=G0, G1=G1, seg_start=np.array([0, N]), segments=[None])
     else:
-        check_resolved(case.d, dt, where)
-        seg_start, parts = _segments(case.d, N, dt, where)
+        check_resolved(d, dt, where)
+        seg_start, parts = _segments(d, N, dt, where)
         out.update(kind=_KIND_SINES, u=np.zeros(0), G0=np.zeros((nm, n)), G1=np.zeros((nm, n)),
                    seg_start=np.array(seg_start, dtype=np.int64), segments=parts)
         for part in parts:
@@ -105,12 +189,7 @@ def _prepare(case, where, cumulative_every, trace_every, dwell_edges):
                 for i, a in enumerate(A):
                     check_no_pole_at(a, part.frequencies,
                                      what=f"{where}the forced response of mode {i} to the disturbance")
-    out["cum_every"] = 0 if cumulative_every is None else _steps_of(
-        "cumulative_every", cumulative_every, dt, where, even=True)
-    if out["cum_every"] > steps:
-        raise ValueError(f"{where}cumulative_every ({cumulative_every:g} s) exceeds the horizon "
-                         f"({horizon:g} s): the coarse grid would hold one point")
-    out["trace_every"] = 0 if trace_every is None else _steps_of("trace_every", trace_every, dt, where)
+    out["cum_every"], out["trace_every"] = cum_steps, trace_steps
     if dwell_edges is None:
         edges = 2 ** np.arange(0, max(2, math.ceil(math.log2(N)) + 2), dtype=np.int64)
     else:
@@ -183,13 +262,19 @@ def _tone_arrays(prep, T):
 
 def _tone_input(A, B, part, dt):
     """H of one mode and one piece: the top-right block of ``expm([[A, B aᵀ], [0, diag(jω)]] Δt)``
-    (see :func:`_tone_arrays`); (n, T) complex."""
+    (see :func:`_tone_arrays`); (n, T) complex.
+
+    The block is linear in the amplitudes a (column j is a_j ∫₀^Δt e^{A(Δt−s)} B e^{jω_j s} ds),
+    so it is computed for unit amplitudes and scaled by a afterwards: the exponential's scaling
+    and squaring then does not depend on the amplitudes, and a run with every amplitude (and
+    x0) times 2^e gives every sample times 2^e exactly. Put into the exponential, a large
+    amplitude (2^150 and beyond) costs digits, and 2^200 ruins the step."""
     n, k = A.shape[0], part.frequencies.size
     M = np.zeros((n + k, n + k), dtype=complex)
     M[:n, :n] = A
-    M[:n, n:] = np.outer(B, part.amplitudes)
+    M[:n, n:] = np.outer(B, np.ones(k))
     M[n:, n:] = np.diag(1j * part.frequencies)
-    return expm(M * dt)[:n, n:]
+    return expm(M * dt)[:n, n:] * np.asarray(part.amplitudes, dtype=float)[None, :]
 
 
 def _law_forms(A, B, W, f):

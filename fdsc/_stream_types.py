@@ -45,7 +45,9 @@ class Case:
     sigma0 : int, optional
         Mode assumed active before t = 0.
     rule : SwitchRule, optional
-        Hysteresis, minimum dwell time and/or moving window (default the printed argmax).
+        Hysteresis, minimum dwell time and/or moving window (default the printed argmax); its
+        window and dwell are checked against ``dt`` when the case runs
+        (:meth:`SwitchRule.steps <fdsc.rules.SwitchRule.steps>`).
     law_weights : list of array_like, optional
         Instead of ``law_bands`` and ``law_Q``: one symmetric W_i per mode on ``[ẋ; x]`` (2n) or
         ``[ẍ; ẋ; x]`` (3n); see :func:`fdsc.simulate.simulate`.

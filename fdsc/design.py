@@ -37,11 +37,20 @@ def _bands(bands, count=None):
     return tuple(bands)
 
 
-def _in_band(in_band, n_modes):
-    in_band = as_count("in_band", in_band, 0)
-    if in_band >= n_modes:
-        raise ValueError(f"in_band must be a mode index in [0, {n_modes}), but found {in_band}")
-    return in_band
+def _mode_index(name, index, n_modes):
+    """``index`` as a mode index in [0, n_modes), or a ValueError naming ``name``."""
+    index = as_count(name, index, 0)
+    if index >= n_modes:
+        raise ValueError(f"{name} must be a mode index in [0, {n_modes}), but found {index}")
+    return index
+
+
+def _gains(gains, plant):
+    """The gains as read-only (m_u, n) matrices, each error naming ``gains[k]``."""
+    if not isinstance(gains, list | tuple):
+        raise TypeError(f"gains must be a list of (m_u, n) matrices, but found {type(gains).__name__}")
+    return tuple(as_matrix(f"gains[{k}]", K, (plant.n_controls, plant.n_states))
+                 for k, K in enumerate(gains))
 
 
 @dataclass(frozen=True)
@@ -115,13 +124,9 @@ class FDSC:
 
     def __post_init__(self):
         plant = as_plant(self.plant)
-        if not isinstance(self.gains, list | tuple):
-            raise TypeError(f"gains must be a list of (m_u, n) matrices, but found "
-                            f"{type(self.gains).__name__}")
-        gains = tuple(as_matrix(f"gains[{k}]", K, (plant.n_controls, plant.n_states))
-                      for k, K in enumerate(self.gains))
+        gains = _gains(self.gains, plant)
         bands = _bands(self.bands, len(gains))
-        in_band = _in_band(self.in_band, len(gains))
+        in_band = _mode_index("in_band", self.in_band, len(gains))
         check_type("certificate", self.certificate, Theorem1Result)
         if len(self.certificate.Q) != len(gains):
             raise ValueError(f"certificate must hold one Q per mode ({len(gains)}), but holds "
@@ -165,7 +170,9 @@ class FDSC:
             If Theorem 1 cannot certify the given Q's, or no Q's exist for this γ_tol.
         SolverError
             If a solve fails.
-        TypeError, ValueError, DimensionError
+        DimensionError
+            If a gain is not of shape ``(m_u, n)`` (the message names ``gains[k]``).
+        TypeError, ValueError
             On invalid arguments (see the class).
 
         Notes
@@ -174,10 +181,9 @@ class FDSC:
         paper Remark 4, paper eq. (53).
         """
         plant = as_plant(plant, n_disturbances=n_disturbances)
-        if not isinstance(gains, list | tuple):
-            raise TypeError(f"gains must be a list of (m_u, n) matrices, but found {type(gains).__name__}")
+        gains = _gains(gains, plant)
         bands = _bands(bands, len(gains))
-        in_band = _in_band(in_band, len(gains))
+        in_band = _mode_index("in_band", in_band, len(gains))
         modes = [plant.closed_loop(K) for K in gains]
         if Q is None:
             cert = design_q(modes, bands, in_band, gamma_tol=gamma_tol)
@@ -273,9 +279,9 @@ class FDSC:
         Raises
         ------
         ValueError
-            If ``i`` is not a mode index.
+            If ``i`` is not a mode index in [0, ``n_modes``) (the message names ``i``).
         """
-        i = _in_band(i, self.n_modes)
+        i = _mode_index("i", i, self.n_modes)
         return self.plant.closed_loop(self.gains[i])
 
     def simulate(self, d: Sinusoids | Piecewise, t: ArrayLike, *, x0: ArrayLike | None = None,

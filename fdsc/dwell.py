@@ -49,6 +49,8 @@ from ._dwell_lmi import (
     _verify,
 )
 from ._dwell_signals import (
+    MAX_SWITCHES,
+    MODES_RTOL,
     DwellCheck,
     PeriodicDwellMargin,
     check_dwell_bound,
@@ -79,6 +81,8 @@ __all__ = [
     "DEFAULT_N_DECAYS",
     "DEFAULT_TAU_RTOL",
     "DEFAULT_MAX_BISECTIONS",
+    "MAX_SWITCHES",
+    "MODES_RTOL",
 ]
 
 #: Points of the coarse λ grid (the refinement around its best point has as many again).
@@ -214,7 +218,7 @@ def dwell_time_bound(modes, *, decay: float | None = None, n_decays: int = DEFAU
     max_eigs, pmin = _verify(A, P, lam, "optimal", "dwell-time certificate")
     return DwellTimeBound(float(taus[best]), lam, mu, mu_crude, float(taus_crude[best]), tuple(P),
                           limits, lams, mus, mus_crude, taus, taus_crude, max_eigs, pmin,
-                          probs.n_solves, probs.n_failed)
+                          probs.n_solves, probs.n_failed, tuple(A))
 
 
 @dataclass(frozen=True)

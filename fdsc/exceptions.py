@@ -15,6 +15,7 @@ __all__ = [
     "UnstableError",
     "SingularFrequencyError",
     "MemoryLimitError",
+    "EnergyOverflowError",
     "UnstableRunWarning",
 ]
 
@@ -129,6 +130,14 @@ class SingularFrequencyError(FdscError, ValueError):
 
 class MemoryLimitError(FdscError, MemoryError):
     """A requested computation would allocate more memory than the stated limit."""
+
+
+class EnergyOverflowError(FdscError, OverflowError):
+    """A simulated run's state stays finite but its energy exceeds the float range (≈ 1.8e308).
+
+    The simulators scale such runs by a power of two so that their sums do not overflow on the
+    way (the loop is linear); only a total that cannot be represented in the caller's units is
+    refused, with this error."""
 
 
 class UnstableRunWarning(UserWarning):

@@ -9,17 +9,23 @@ switching quantity). A :class:`SwitchRule` adds any combination of three modific
 in this order at every sample k:
 
 1. **Moving window** (``window = T_w > 0``): the score of mode i is replaced by its mean over
-   the last ``L = round(T_w / dt)`` samples (fewer at the start of the run), the FD-EEF of the
+   the last ``L = T_w / dt`` samples (fewer at the start of the run), the FD-EEF of the
    recent past, paper eq. (19), per unit time. The scores entering the window are those of the
-   law at each sample (same reading of ẋ).
+   law at each sample (same reading of ẋ). ``T_w`` must be a whole number L ≥ 2 of steps; a
+   window longer than the run averages every sample since t = 0.
 2. **Minimum dwell time** (``dwell = τ_d > 0``): no switch happens less than
-   ``ceil(τ_d / dt)`` samples after the previous one; the mode ``sigma0`` counts as switched on
-   at t = 0, so the first switch comes at t ≥ τ_d too (a dwell longer than the horizon gives the
-   fixed-gain run of ``sigma0``).
+   ``ceil(τ_d / dt) ≥ 2`` samples after the previous one; the mode ``sigma0`` counts as
+   switched on at t = 0, so the first switch comes at t ≥ τ_d too (a dwell longer than the
+   horizon gives the fixed-gain run of ``sigma0``: no switch at all).
 3. **Hysteresis** (``margin = h > 0``): the best mode j replaces the active mode a only if
    ``s_j − s_a > h`` (absolute) or ``s_j − s_a > h · (|s_j| + |s_a|)`` (relative: scale-free,
-   since the scores scale with the Q's; the ratio lies in (0, 1], so a relative margin h ≥ 1
-   never switches).
+   since the scores scale with the Q's; the ratio lies in (0, 1], so a relative margin must be
+   below 1, where it never switches).
+
+A window or dwell of one step or less would change nothing (the law decides at every sample
+anyway), and a window off the grid would be rounded to another length: both are refused when
+the rule is turned into steps (:meth:`SwitchRule.steps`, by the simulators). Lengths beyond the
+run are clamped to ``n_steps + 1`` samples, which is the same run as any longer one.
 
 With all three off the rule is the printed argmax (ties to the lowest index). The same compiled
 functions apply the rule in :func:`fdsc.simulate.simulate` (through ``apply_rule``) and in the
@@ -35,9 +41,9 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from ._validation import as_nonnegative
+from ._validation import as_nonnegative, as_positive
 
-__all__ = ["SwitchRule", "PRINTED"]
+__all__ = ["SwitchRule", "PRINTED", "MAX_RULE_STEPS"]
 
 
 @dataclass(frozen=True)
@@ -47,20 +53,23 @@ class SwitchRule:
     Parameters
     ----------
     margin : float, optional
-        Hysteresis margin h ≥ 0 (0: none).
+        Hysteresis margin h ≥ 0 (0: none); below 1 if relative.
     relative : bool, optional
-        Whether the margin is relative to ``|s_j| + |s_a|`` (default; h in [0, 1) is useful) or
+        Whether the margin is relative to ``|s_j| + |s_a|`` (default; h in [0, 1)) or
         absolute (in the units of the scores).
     dwell : float, optional
-        Minimum dwell time τ_d ≥ 0 in s (0: none).
+        Minimum dwell time τ_d ≥ 0 in s (0: none); more than one step of the run's dt (checked
+        by :meth:`steps`).
     window : float, optional
         Length T_w ≥ 0 (s) of the moving window over which the scores are averaged (0: the
-        instantaneous scores).
+        instantaneous scores); a whole number ≥ 2 of steps of the run's dt, or longer than the
+        run (checked by :meth:`steps`).
 
     Raises
     ------
     ValueError
-        If a parameter is negative, not finite, or ``relative`` is not a bool.
+        If a parameter is negative or not finite, ``relative`` is not a bool, or a relative
+        ``margin`` is ≥ 1 (the relative lead is at most 1: the rule would never switch).
 
     Examples
     --------
@@ -81,6 +90,11 @@ class SwitchRule:
         if not isinstance(self.relative, bool | np.bool_):
             raise ValueError(f"relative must be a bool, but found {self.relative!r}")
         object.__setattr__(self, "relative", bool(self.relative))
+        if self.relative and self.margin >= 1:
+            raise ValueError(f"margin must be < 1 for a relative hysteresis margin (the relative "
+                             f"lead (s_j - s_a)/(|s_j| + |s_a|) is at most 1, so the rule would "
+                             f"never switch), but found {self.margin!r}; give relative=False for "
+                             f"a margin in the units of the scores")
 
     @classmethod
     def hysteresis(cls, margin: float, *, relative: bool = True) -> "SwitchRule":
@@ -89,13 +103,27 @@ class SwitchRule:
         Parameters
         ----------
         margin : float
-            h ≥ 0, relative to ``|s_j| + |s_a|`` or absolute.
+            h ≥ 0, relative to ``|s_j| + |s_a|`` (then h < 1) or absolute.
         relative : bool, optional
             Relative (default) or absolute margin.
 
         Returns
         -------
         SwitchRule
+
+        Raises
+        ------
+        ValueError
+            If ``margin`` is negative or not finite, or ≥ 1 and relative.
+
+        Examples
+        --------
+        >>> SwitchRule.hysteresis(1.0)
+        Traceback (most recent call last):
+        ...
+        ValueError: margin must be < 1 for a relative hysteresis margin (the relative lead \
+(s_j - s_a)/(|s_j| + |s_a|) is at most 1, so the rule would never switch), but found 1.0; give \
+relative=False for a margin in the units of the scores
         """
         return cls(margin=margin, relative=relative)
 
@@ -106,7 +134,8 @@ class SwitchRule:
         Parameters
         ----------
         tau : float
-            Minimum dwell time τ_d ≥ 0 in s.
+            Minimum dwell time τ_d ≥ 0 in s; more than one step of the run's dt (see
+            :meth:`steps`). A dwell longer than the run keeps ``sigma0`` throughout.
 
         Returns
         -------
@@ -121,7 +150,8 @@ class SwitchRule:
         Parameters
         ----------
         T_w : float
-            Window length ≥ 0 in s.
+            Window length ≥ 0 in s: a whole number ≥ 2 of steps of the run's dt, or longer than
+            the run (see :meth:`steps`).
 
         Returns
         -------
@@ -134,27 +164,44 @@ class SwitchRule:
         """True if the rule is the printed argmax (no margin, dwell or window)."""
         return self.margin == 0 and self.dwell == 0 and self.window == 0
 
-    def steps(self, dt: float) -> tuple[int, int]:
+    def steps(self, dt: float, n_steps: int | None = None) -> tuple[int, int]:
         """The dwell and the window in samples of the step ``dt``.
 
         Parameters
         ----------
         dt : float
-            Step in s.
+            Step in s (> 0).
+        n_steps : int, optional
+            Steps of the run (horizon / dt). Given, a dwell or a window longer than the run is
+            clamped to ``n_steps + 1`` samples, the same run as any longer one (and such a
+            window need not lie on the grid); otherwise to :data:`MAX_RULE_STEPS`.
 
         Returns
         -------
         dwell_steps, window_steps : int
             ``ceil(τ_d / dt)`` (0 without dwell; a relative 1e-9 of rounding tolerated) and
-            ``max(1, round(T_w / dt))``.
+            ``T_w / dt`` (1 without window), each at most the clamp.
+
+        Raises
+        ------
+        ValueError
+            If ``dt`` is not positive; if ``window`` (not longer than the run) is not a whole
+            number of steps of ``dt`` (to a relative 1e-9, as the simulators' other grid
+            lengths); or if ``dwell`` or ``window`` is one step or less (it would have no
+            effect: the law decides at every sample anyway).
 
         Examples
         --------
-        >>> SwitchRule(dwell=0.25, window=0.1).steps(0.1)
-        (3, 1)
+        >>> SwitchRule(dwell=0.25, window=0.3).steps(0.1)
+        (3, 3)
+        >>> SwitchRule.dwell_time(1e16).steps(1e-3, n_steps=1000)      # longer than the run
+        (1001, 1)
+        >>> SwitchRule.moving_window(0.14).steps(0.1)
+        Traceback (most recent call last):
+        ...
+        ValueError: rule.window (0.14 s) must be a multiple of dt (0.1 s): the window averages whole samples
         """
-        dwell_steps = math.ceil(self.dwell / dt * (1 - 1e-9)) if self.dwell > 0 else 0
-        return dwell_steps, max(1, round(self.window / dt))
+        return _rule_steps(self, dt, n_steps, "")
 
     def describe(self) -> str:
         """A short label (for tables and legends).
@@ -181,16 +228,58 @@ class SwitchRule:
 #: The printed law of paper eq. (31).
 PRINTED = SwitchRule()
 
+#: Clamp of :meth:`SwitchRule.steps` without a run length: more steps than any run has (the
+#: simulators' step index is a 64-bit integer and a run has fewer than 2^62 steps).
+MAX_RULE_STEPS = 2**62
 
-def rule_state(rule: SwitchRule, dt: float, n_modes: int):
-    """Kernel parameters and zeroed state of ``rule`` for one run (internal).
 
-    Returns ``params`` (float64: margin, relative, dwell steps, window steps) and ``ring``
-    ((L, I) window samples), ``ring_sum`` ((I,)), ``istate`` (int64: position, count, last
-    switch).
+def _rule_steps(rule, dt, n_steps, where):
+    """:meth:`SwitchRule.steps` with the messages prefixed by ``where`` (a batch's case)."""
+    dt = as_positive(f"{where}dt", dt)
+    cap = MAX_RULE_STEPS if n_steps is None else int(n_steps) + 1
+    dwell_steps = 0
+    if rule.dwell > 0:
+        ratio = rule.dwell / dt
+        # compared before rounding: a dwell far beyond the run (or inf after the division)
+        # must neither overflow the step counter nor be dropped
+        dwell_steps = cap if ratio >= cap else min(cap, math.ceil(ratio * (1 - 1e-9)))
+        if dwell_steps <= 1:
+            raise ValueError(f"{where}rule.dwell ({rule.dwell!r} s) is at most one step of dt "
+                             f"({dt!r} s): the law may switch at every step anyway, so it would "
+                             "have no effect; give at least two steps, or 0 for none")
+    window_steps = 1
+    if rule.window > 0:
+        ratio = rule.window / dt
+        if ratio > cap:
+            window_steps = cap          # longer than the run: the mean of every sample so far
+        else:
+            k = round(ratio)
+            if abs(k * dt - rule.window) > 1e-9 * rule.window:
+                raise ValueError(f"{where}rule.window ({rule.window!r} s) must be a multiple of dt "
+                                 f"({dt!r} s): the window averages whole samples")
+            if k <= 1:
+                raise ValueError(f"{where}rule.window ({rule.window!r} s) is one step of dt "
+                                 f"({dt!r} s): the mean over one sample is the instantaneous "
+                                 "score, so it would have no effect; give at least two steps, "
+                                 "or 0 for none")
+            window_steps = k
+    return dwell_steps, window_steps
+
+
+def rule_state(rule: SwitchRule, dt: float, n_modes: int, n_steps: int, where: str = ""):
+    """Kernel parameters and zeroed state of ``rule`` for a run of ``n_steps`` steps (internal).
+
+    Returns ``params`` (float64: margin, relative, dwell steps, window steps; both step counts
+    at most ``n_steps + 1``, see :meth:`SwitchRule.steps`) and ``ring`` ((L, I) window samples),
+    ``ring_sum`` ((I,)), ``istate`` (int64: position, count, last switch). Raises ValueError
+    (prefixed by ``where``) as :meth:`SwitchRule.steps`.
     """
-    dwell_steps, L = rule.steps(dt)
-    params = np.array([rule.margin, float(rule.relative), float(dwell_steps), float(L)])
+    dwell_steps, L = _rule_steps(rule, dt, n_steps, where)
+    # the kernels read the dwell back as an integer: it must not round below n_steps + 1
+    dwell = float(dwell_steps)
+    if dwell < dwell_steps:
+        dwell = math.nextafter(dwell, math.inf)
+    params = np.array([rule.margin, float(rule.relative), dwell, float(L)])
     return params, np.zeros((L if L > 1 else 0, n_modes)), np.zeros(n_modes), np.zeros(3, np.int64)
 
 

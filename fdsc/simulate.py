@@ -17,6 +17,7 @@ cos and sin on the whole grid, kept for the tests and the benchmark; the two agr
 The modes and the law's weights are read as in :mod:`fdsc.stream` (:mod:`fdsc._modes`).
 """
 
+import math
 import warnings
 from dataclasses import dataclass
 
@@ -25,12 +26,13 @@ from numpy.typing import ArrayLike
 from scipy.linalg import expm
 
 from . import _divergence
+from ._defaults import DEFAULT_MAX_MEMORY
 from ._modes import LAWS, _as_modes, _law_weights, _shared_input
 from ._simulate_kernel import PHASOR_BLOCK, _samples, _segments, check_resolved, tone_tables
 from ._simulate_kernel import kernel as _compiled_kernel
 from ._simulate_reference import _kernel_numpy, _particular_many, _particular_steps
 from ._validation import as_choice, as_count, as_matrix, as_positive, as_vector, check_type
-from .exceptions import MemoryLimitError, UnstableError, UnstableRunWarning
+from .exceptions import EnergyOverflowError, MemoryLimitError, UnstableError, UnstableRunWarning
 from .plant import LTISystem
 from .rules import PRINTED, SwitchRule, rule_state
 from .signals import Piecewise, Sinusoids
@@ -40,8 +42,6 @@ __all__ = ["SimResult", "particular", "simulate", "time_grid", "envelope", "esti
 
 #: Compiled kernel or its plain NumPy reference.
 KERNELS = ("numba", "numpy")
-#: Largest working memory (bytes) :func:`simulate` allocates unless told otherwise.
-DEFAULT_MAX_MEMORY = 4 * 2**30
 #: Grid uniformity: |t_k − (t_0 + k dt)| may not exceed this fraction of dt (plus rounding of t).
 GRID_RTOL = 1e-6
 
@@ -83,13 +83,18 @@ class SimResult:
         -------
         float
 
+        Raises
+        ------
+        EnergyOverflowError
+            If the energy exceeds the float range (the samples themselves are finite: they are
+            squared at a scale of a power of two and the sum scaled back, so a finite energy is
+            never lost to an overflow on the way).
+
         Notes
         -----
         The numerator of the energy ratios of paper eqs. (14), (15) and (35).
         """
-        from scipy.integrate import simpson
-
-        return float(simpson(np.sum(self.z**2, axis=1), x=self.t))
+        return _scaled_simpson(self.z.reshape(self.t.size, -1), self.t, "energy: ∫zᵀz")
 
     def input_energy(self) -> float:
         """∫ d² dt over the run (composite Simpson's rule on the grid).
@@ -97,10 +102,13 @@ class SimResult:
         Returns
         -------
         float
-        """
-        from scipy.integrate import simpson
 
-        return float(simpson(self.d**2, x=self.t))
+        Raises
+        ------
+        EnergyOverflowError
+            If the energy exceeds the float range (as :meth:`energy`).
+        """
+        return _scaled_simpson(self.d.reshape(self.t.size, -1), self.t, "input_energy: ∫d²")
 
     def time_share(self) -> np.ndarray:
         """Fraction of the horizon spent in each mode (β_i of Theorem 1(3), paper eq. (36)).
@@ -114,6 +122,21 @@ class SimResult:
         dt = np.diff(self.t)
         return np.array([dt[self.sigma[:-1] == i].sum() for i in range(n_modes)]) / (
             self.t[-1] - self.t[0])
+
+
+def _scaled_simpson(v, t, what):
+    """Simpson's rule of the row sums of ``v²`` over ``t``, squared at the scale 2^−e that keeps
+    the largest sample below 2^400 and scaled back by 2^2e (exact)."""
+    from scipy.integrate import simpson
+
+    big = float(np.abs(v).max()) if v.size else 0.0
+    e = max(0, math.frexp(big)[1] - 400) if np.isfinite(big) else 0
+    with np.errstate(over="ignore"):
+        total = float(np.ldexp(float(simpson(np.sum(np.ldexp(v, -e) ** 2, axis=1), x=t)), 2 * e))
+    if np.isfinite(big) and not math.isfinite(total):
+        raise EnergyOverflowError(f"{what} over the run exceeds the float range (about 1.8e308) "
+                                  f"although every sample is finite (largest {big:.3g})")
+    return total
 
 
 def time_grid(horizon: float, dt: float) -> np.ndarray:
@@ -343,7 +366,10 @@ def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
         Mode assumed active before t = 0 (used for ẋ at t = 0).
     rule : SwitchRule, optional
         Hysteresis, minimum dwell time and/or moving window applied to the law
-        (:class:`~fdsc.rules.SwitchRule`; default the printed argmax).
+        (:class:`~fdsc.rules.SwitchRule`; default the printed argmax). Its window must be a
+        whole number ≥ 2 of steps, its dwell more than one step; either longer than the run is
+        clamped to it (a dwell beyond the horizon gives the fixed-gain run of ``sigma0``). With
+        a single mode a rule has no effect (a warning says so).
     law_weights : list of array_like, optional
         Instead of ``law_bands`` and ``law_Q``: one symmetric weight W_i per mode, (2n, 2n) on
         ``[ẋ; x]`` or (3n, 3n) on ``[ẍ; ẋ; x]``; the law picks ``argmax_i vᵀ W_i v``. The measured
@@ -351,8 +377,8 @@ def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
     kernel : {"numba", "numpy"}, optional
         Compiled kernel or its plain NumPy reference.
     max_memory : float, optional
-        Refuse runs whose estimated working memory (:func:`estimate_memory`) exceeds this many
-        bytes (default 4 GiB).
+        Refuse runs whose estimated working memory (:func:`estimate_memory`, plus the moving
+        window's samples) exceeds this many bytes (default :data:`DEFAULT_MAX_MEMORY`, 4 GiB).
 
     Returns
     -------
@@ -361,10 +387,13 @@ def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
     Raises
     ------
     ValueError
-        On mismatched mode/law counts, modes that do not share B and D, a disturbance with more
-        than one input, a non-uniform grid, breaks of a Piecewise off the grid, non-PD Q, law
-        weights that are not symmetric or given together with ``law_bands``/``law_Q``, an
-        unknown law or kernel, or ``sigma0`` not a mode index.
+        On mismatched mode/law counts, modes that do not share B and D, modes without a
+        regulated output (C with 0 rows), a disturbance with more than one input, a non-uniform
+        grid, breaks of a Piecewise off the grid, an MF range in ``law_bands`` (the law takes
+        real Ψ only), non-PD Q, law weights that are not symmetric or given together with
+        ``law_bands``/``law_Q``, an unknown law or kernel, ``sigma0`` not a mode index, or a
+        ``rule`` whose window is off the grid or whose window or dwell is one step or less
+        (:meth:`SwitchRule.steps <fdsc.rules.SwitchRule.steps>`).
     TypeError
         If ``modes``, ``d``, ``law_bands`` or ``rule`` are not of the accepted types.
     DimensionError
@@ -372,9 +401,9 @@ def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
     SingularFrequencyError
         If a disturbance tone sits at an eigenvalue of a mode (resonance).
     MemoryLimitError
-        If the run would need more than ``max_memory`` bytes (:func:`estimate_memory`);
-        raised before any array of the run is allocated (the grid check's temporaries, about
-        3 N floats, come first).
+        If the run would need more than ``max_memory`` bytes (:func:`estimate_memory` and the
+        window's (L, I) samples); raised before any array of the run is allocated (the grid
+        check's temporaries, about 3 N floats, come first).
     UnstableError
         If the state overflows (the loop diverges) during the run.
 
@@ -385,6 +414,8 @@ def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
         or if the divergence monitor flags a switched run (:mod:`fdsc._divergence`: a state
         exceeds 10⁶ times the largest any of its modes reaches alone from the same x0 under the
         same disturbance; the message names the time and the growth).
+    UserWarning
+        If ``rule`` is not the printed law but there is a single mode (it has no effect).
 
     Notes
     -----
@@ -410,24 +441,31 @@ def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
     n_modes = len(modes)
     W = _law_weights(n, n_modes, law_bands, law_Q, law_weights)
     check_type("rule", rule, SwitchRule)
+    if n_modes == 1 and not rule.is_printed:
+        warnings.warn(f"simulate: rule ({rule.describe()}) has no effect on a single mode: the "
+                      "run is the fixed-gain run", UserWarning, stacklevel=2)
     sigma0 = as_count("sigma0", sigma0, 0)
     if sigma0 >= n_modes:
         raise ValueError(f"sigma0 must be a mode index in [0, {n_modes}), found {sigma0}")
     t, dt = _check_grid(t)
+    # the window's length in steps (clamped to the run) before anything is allocated
+    window_steps = rule.steps(dt, t.size - 1)[1]
     x0 = np.zeros(n) if x0 is None else np.array(as_vector("x0", x0, n))
     n_tones = max(p.frequencies.size for p in (d.parts if isinstance(d, Piecewise) else (d,)))
     check_resolved(d, dt)
     pieces = _segments(d, t)
     need = estimate_memory(t.size, n, modes[0].n_outputs, n_modes, n_tones, n_pieces=len(pieces),
                            longest_piece=max(k1 - k0 for k0, k1, _ in pieces), kernel=kernel)
-    if need > max_memory:
+    ring = 8 * n_modes * window_steps if window_steps > 1 else 0
+    if need + ring > max_memory:
+        window = f" (rule.window = {rule.window!r} s: {ring / 2**30:.3g} GiB)" if ring else ""
         raise MemoryLimitError(
-            f"simulate: {t.size} steps of {n_modes} mode(s) need about {need / 2**30:.2f} GiB, more "
-            f"than max_memory = {max_memory / 2**30:.2f} GiB; shorten the horizon, enlarge dt or "
-            "raise max_memory")
+            f"simulate: {t.size} steps of {n_modes} mode(s) need about {(need + ring) / 2**30:.2f} "
+            f"GiB{window}, more than max_memory = {max_memory / 2**30:.2f} GiB; shorten the "
+            "horizon, enlarge dt or raise max_memory")
     Phi = np.array([expm(m.A * dt) for m in modes])
     A = np.array([m.A for m in modes])
-    rparams, ring, ring_sum, istate = rule_state(rule, dt, n_modes)
+    rparams, ring, ring_sum, istate = rule_state(rule, dt, n_modes, t.size - 1)
     with np.errstate(over="ignore", invalid="ignore"):
         if kernel == "numba":
             tab = tone_tables(pieces, t, A, B[:, 0], dt)

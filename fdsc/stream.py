@@ -55,6 +55,7 @@ the GIL, from a pool of Python threads, the longest cases first; the results com
 long enough to repay a compilation (:data:`UNROLL_MIN_STEPS`), with the same results bit for bit.
 """
 
+import math
 import warnings
 
 import numba
@@ -62,11 +63,12 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from . import _divergence
-from ._stream_run import UNROLL_MAX, UNROLL_MIN_STEPS, _run, _warn_unstable_modes
+from ._defaults import DEFAULT_MAX_MEMORY
+from ._stream_run import UNROLL_MAX, UNROLL_MIN_STEPS, _run, _warn_unstable_modes, energy_overflow
 from ._stream_setup import PHASOR_BLOCK, _prepare
 from ._stream_types import BatchResult, Case, StreamResult, Trace
 from ._validation import as_choice, as_count, check_type
-from .exceptions import UnstableError, UnstableRunWarning
+from .exceptions import EnergyOverflowError, UnstableError, UnstableRunWarning
 from .rules import PRINTED, SwitchRule
 from .signals import Piecewise, Sampled, Sinusoids
 
@@ -81,13 +83,28 @@ STREAM_KERNELS = ("numba", "python")
 # public functions
 # ---------------------------------------------------------------------------------------------
 
+def _bound(pr):
+    """The divergence monitor's bound R of a prepared case, in the caller's units."""
+    return math.ldexp(pr["x_bound"], pr["scale_exp"])
+
+
+def _overflow_message(where, res):
+    which = " and ".join(name for name, v in (("∫zᵀz", res.energy), ("∫d²", res.input_energy))
+                         if not math.isfinite(v))
+    verb = "exceed" if " and " in which else "exceeds"
+    return (f"{where}{which} over the run {verb} the float range (about 1.8e308) although the "
+            f"state stays finite (|x(T)| = {float(np.abs(res.x_final).max()):.3g}); scale the "
+            "disturbance or the initial state down")
+
+
 def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, dt: float, *,
                     x0: ArrayLike | None = None, law_bands: list | None = None,
                     law_Q: list | None = None, law: str = "previous", sigma0: int = 0,
                     rule: SwitchRule = PRINTED, law_weights: list | None = None,
                     cumulative_every: float | None = None, trace_every: float | None = None,
                     dwell_edges: ArrayLike | None = None, kernel: str = "numba",
-                    closed_form: bool = True, specialize: bool | None = None) -> StreamResult:
+                    closed_form: bool = True, specialize: bool | None = None,
+                    max_memory: float = DEFAULT_MAX_MEMORY) -> StreamResult:
     """Simulate one LTI or switched loop on ``0, dt, …, horizon`` and return its reductions.
 
     The same exact step and the same sampled switching law (paper eq. (31)) as
@@ -112,7 +129,10 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
         Mode assumed active before t = 0.
     rule : SwitchRule, optional
         Hysteresis, minimum dwell time and/or moving window (:class:`~fdsc.rules.SwitchRule`;
-        default the printed argmax).
+        default the printed argmax). Its window must be a whole number ≥ 2 of steps, its dwell
+        more than one step; either longer than the run is clamped to it (a dwell beyond the
+        horizon gives the fixed-gain run of ``sigma0``). With a single mode a rule has no
+        effect (a warning says so).
     law_weights : list of array_like, optional
         Instead of ``law_bands`` and ``law_Q``: one symmetric W_i per mode on ``[ẋ; x]`` (2n) or
         ``[ẍ; ẋ; x]`` (3n); see :func:`fdsc.simulate.simulate`.
@@ -138,6 +158,9 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
         Default None: for runs of at least :data:`UNROLL_MIN_STEPS` steps, and for shorter
         ones whose sizes this process has already compiled or loaded. Ignored by the
         ``"python"`` kernel.
+    max_memory : float, optional
+        Refuse a run whose outputs (coarse grid, traces and the moving window's samples) would
+        need more than this many bytes (default :data:`fdsc.simulate.DEFAULT_MAX_MEMORY`, 4 GiB).
 
     Returns
     -------
@@ -147,8 +170,15 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
     ------
     ValueError
         On a grid, coarse grid, trace bin or break that does not fit ``dt``, modes that do not
-        share B and D, a non-scalar disturbance, non-PD ``law_Q``, law weights that are not
-        symmetric or given together with ``law_bands``/``law_Q``, an unknown law or kernel.
+        share B and D or have no regulated output (C with 0 rows), a non-scalar disturbance, an
+        MF range in ``law_bands`` (the law takes real Ψ only), non-PD ``law_Q``, law weights
+        that are not symmetric or given together with ``law_bands``/``law_Q``, an unknown law
+        or kernel, or a ``rule`` whose window is off the grid or whose window or dwell is one
+        step or less (:meth:`SwitchRule.steps <fdsc.rules.SwitchRule.steps>`).
+    MemoryLimitError
+        If the outputs would need more than ``max_memory`` bytes; the message names the
+        argument that asks for most of them (``cumulative_every``, ``trace_every`` or
+        ``rule.window``) and the estimate. Raised before they are allocated.
     TypeError
         If ``modes``, ``d``, ``law_bands`` or ``rule`` are not of the accepted types.
     DimensionError
@@ -157,6 +187,12 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
         If a disturbance tone sits at an eigenvalue of a mode.
     UnstableError
         If the state overflows: the loop diverges and no finite energy summarizes it.
+    EnergyOverflowError
+        If the state stays finite but ``∫zᵀz`` or ``∫d²`` exceeds the float range. Runs whose
+        samples could come near the square root of the float range (a huge ``x0`` or tone) are
+        simulated scaled down by a power of two and scaled back, exactly, so that no sum
+        overflows on the way: the energy of ``x0 = [1e153]`` through a stable first-order loop
+        (about 5e305) is finite.
 
     Warns
     -----
@@ -165,6 +201,8 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
         monitor flags the run (:mod:`fdsc._divergence`: the state exceeds 10⁶ times the largest
         state any of its modes reaches alone from the same x0 under the same disturbance; the
         time and the growth are in the message and in ``grew_at`` and ``growth``).
+    UserWarning
+        If ``rule`` is not the printed law but there is a single mode (it has no effect).
 
     Notes
     -----
@@ -193,14 +231,16 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
     check_type("specialize", specialize, (bool, np.bool_, type(None)), "True, False or None")
     case = Case(modes, d, horizon, dt, x0=x0, law_bands=law_bands, law_Q=law_Q, law=law,
                 sigma0=sigma0, rule=rule, law_weights=law_weights)
-    pr = _prepare(case, "", cumulative_every, trace_every, dwell_edges)
+    pr = _prepare(case, "", cumulative_every, trace_every, dwell_edges, max_memory)
     (res,) = _run([pr], kernel, 1, closed_form, specialize)
     if res.diverged_at is not None:
         raise UnstableError(f"simulate_stream: the state overflowed at t = {res.diverged_at:g} s; "
                             "the loop diverges and no finite energy summarizes it")
+    if energy_overflow(res):
+        raise EnergyOverflowError(_overflow_message("simulate_stream: ", res))
     if res.grew_at is not None:
         warnings.warn(_divergence.message("simulate_stream: ", res.grew_at, res.growth,
-                                          pr["x_bound"]), UnstableRunWarning, stacklevel=2)
+                                          _bound(pr)), UnstableRunWarning, stacklevel=2)
     _warn_unstable_modes(pr, res, "simulate_stream: ", 3)
     return res
 
@@ -208,7 +248,8 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
 def simulate_batch(cases, *, cumulative_every: float | None = None, trace_every: float | None = None,
                    dwell_edges: ArrayLike | None = None, threads: int | None = None,
                    kernel: str = "numba", closed_form: bool = True,
-                   specialize: bool | None = None) -> BatchResult:
+                   specialize: bool | None = None,
+                   max_memory: float = DEFAULT_MAX_MEMORY) -> BatchResult:
     """Run many :class:`Case` s in one call, in parallel over cases.
 
     Parameters
@@ -230,6 +271,8 @@ def simulate_batch(cases, *, cumulative_every: float | None = None, trace_every:
         As in :func:`simulate_stream`, for each group of cases with the same number of modes,
         kind of input and traces or none (default None: groups of at least
         :data:`UNROLL_MIN_STEPS` steps, or whose sizes this process already has).
+    max_memory : float, optional
+        As in :func:`simulate_stream`, for each case.
 
     Returns
     -------
@@ -240,15 +283,20 @@ def simulate_batch(cases, *, cumulative_every: float | None = None, trace_every:
 
     Raises
     ------
-    ValueError, TypeError, SingularFrequencyError
+    ValueError, TypeError, SingularFrequencyError, MemoryLimitError
         As :func:`simulate_stream`, with the message naming the case (``cases[c]``); also if
         ``cases`` is empty or ``threads`` is not a positive integer.
+    EnergyOverflowError
+        If a case's state stays finite but its energy exceeds the float range (the first such
+        case is named).
 
     Warns
     -----
     UnstableRunWarning
         For diverged cases (listed: the state overflowed, or the divergence monitor flagged the
         run, see :func:`simulate_stream`), and for a non-Hurwitz mode active in a finite run.
+    UserWarning
+        For a case of a single mode with a ``rule`` other than the printed law (no effect).
 
     Examples
     --------
@@ -268,9 +316,14 @@ def simulate_batch(cases, *, cumulative_every: float | None = None, trace_every:
         raise ValueError("cases must hold at least one Case")
     threads = numba.get_num_threads() if threads is None else as_count("threads", threads)
     threads = min(threads, numba.config.NUMBA_NUM_THREADS)
-    preps = [_prepare(c, f"cases[{i}]: ", cumulative_every, trace_every, dwell_edges)
+    preps = [_prepare(c, f"cases[{i}]: ", cumulative_every, trace_every, dwell_edges, max_memory)
              for i, c in enumerate(cases)]
     results = _run(preps, kernel, threads, closed_form, specialize)
+    big = [i for i, r in enumerate(results) if energy_overflow(r)]
+    if big:
+        raise EnergyOverflowError(f"simulate_batch: {len(big)} of {len(cases)} cases: "
+                                  + _overflow_message(f"cases[{big[0]}]: ", results[big[0]])
+                                  + f" (cases {big[:20]})")
     batch = BatchResult(cases, results)
     over = np.array([r.diverged_at is not None for r in results])
     if over.any():
@@ -285,7 +338,7 @@ def simulate_batch(cases, *, cumulative_every: float | None = None, trace_every:
                       f"divergence monitor, their energies are finite but meaningless): cases "
                       f"{grew.tolist()[:20]}; "
                       + _divergence.message(f"cases[{grew[0]}]: ", first.grew_at, first.growth,
-                                            preps[grew[0]]["x_bound"]),
+                                            _bound(preps[grew[0]])),
                       UnstableRunWarning, stacklevel=2)
     for pr, res, i in zip(preps, results, range(len(preps)), strict=True):
         if res.diverged_at is None:
