@@ -52,7 +52,7 @@ __all__ = [
 PAPER_FIGURES = {
     1: ("the closed loop with FDSC (block diagram)", "switching_law"),
     2: ("code and data availability box (no data)", None),
-    3: ("sigma_max of the closed loops with K_f1, K_f2, K_f3, K_e", "passive_controllers"),
+    3: ("sigma_max of the closed loops with K_f1, K_f2, K_f3, K_e", "gkyp_lemma"),
     4: ("q, delta_E, delta_PTV under the LF disturbance, four controllers", "stationary"),
     5: ("the same under the HF disturbance", "stationary"),
     6: ("L2-induced norm over time under the HF disturbance", "stationary"),
@@ -97,6 +97,37 @@ def figure_status(record):
 CHAPTERS = (inputs, frequency_ranges, gkyp_lemma, passive_controllers, frequency_selective, theorem1,
             theorem1_counterexamples, switching_law, stationary, nonstationary, wellposed, three_mode,
             baselines, generic_example, monte_carlo, comparators)
+
+
+#: The book page that computes each chapter module's entries (the report links to it); entries
+#: listed in :data:`ENTRY_PAGES` are shown on another page than their module's.
+PAGES = {"inputs": "frequency_ranges", "wellposed": "wellposed_laws", "three_mode": "three_modes",
+         "comparators": "baselines"}
+ENTRY_PAGES = {"bound_f1": "printed_bounds", "bound_f2": "printed_bounds",
+               "bound_f3": "printed_bounds", "bound_e": "printed_bounds"}
+
+
+def entry_page(module_name, entry_id):
+    """The book page (file stem) that computes an entry of a chapter module.
+
+    Parameters
+    ----------
+    module_name : str
+        The chapter module's name (``fdsc.paper.<chapter>``).
+    entry_id : str
+        The entry's id.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> entry_page("fdsc.paper.wellposed", "x"), entry_page("fdsc.paper.passive_controllers", "bound_e")
+    ('wellposed_laws', 'printed_bounds')
+    """
+    short = module_name.rsplit(".", 1)[-1]
+    return ENTRY_PAGES.get(entry_id, PAGES.get(short, short))
 
 
 #: Environment variable: how many processes compute the record's chapters (default: the number
@@ -183,10 +214,14 @@ def reproduction_record():
     dict
     """
     with shared_results():  # the chapters and the claims ask for the same runs: compute them once
-        part = RecordPart()
-        for chapter_part in chapter_parts(CHAPTERS, record_jobs()):
+        part, entries = RecordPart(), []
+        for chapter, chapter_part in zip(CHAPTERS, chapter_parts(CHAPTERS, record_jobs()), strict=True):
             part = part + chapter_part
-        part = part + claims.halving_record()
+            entries += [{**e, "chapter": entry_page(chapter.__name__, e["id"])}
+                        for e in chapter_part.entries]
+        halving = claims.halving_record()
+        part = part + halving
+        entries += [{**e, "chapter": "report"} for e in halving.entries]
         checklist = [row.to_dict() for row in claims.claims_checklist()]
-    return {"entries": list(part.entries), "figures": dict(part.figures), "claims": checklist,
+    return {"entries": entries, "figures": dict(part.figures), "claims": checklist,
             "environment": environment()}

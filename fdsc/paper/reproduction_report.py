@@ -24,6 +24,8 @@ __all__ = [
     "record_schema",
     "figures_named",
     "printed_rows",
+    "full_value",
+    "entry_link",
     "figure_rows",
     "claim_rows",
     "finding_rows",
@@ -137,9 +139,67 @@ def printed_rows(record):
     >>> [(r["id"], r["paper"], r["ours"]) for r in printed_rows(rec)]
     [('K', '[[0.1048, 15.09]]', '[[0.1049, 15.1]]')]
     """
-    return [{"id": e["id"], "source": e["source"], "paper": compact(e["paper"]),
-             "ours": compact(e["recomputed"]), "verdict": e["verdict"], "reason": e["note"]}
+    return [{"id": e["id"], "entry": entry_link(e), "source": e["source"],
+             "paper": compact(e["paper"]), "paper_full": full_value(e["paper"]),
+             "ours": compact(e["recomputed"]), "ours_full": full_value(e["recomputed"]),
+             "verdict": e["verdict"], "reason": e["note"]}
             for e in _entries(record) if e["paper"] is not None and e["verdict"] != "new"]
+
+
+def full_value(value):
+    """A record value as HTML for a table cell, never cut: numbers to ten significant digits
+    (as the record keeps them), so a printed number shows every digit printed; a long value
+    (a matrix, a list, a dict) shows its short form (:func:`fdsc.paper.report.compact`) with the
+    whole value in a ``<details>`` element below it.
+
+    Parameters
+    ----------
+    value : object
+        A record value.
+
+    Returns
+    -------
+    str
+        Trusted HTML (every part escaped).
+
+    Examples
+    --------
+    >>> full_value(15.0897)
+    '15.0897'
+    >>> full_value(list(range(30))).startswith("<details><summary>[0, 1, 2, 3, 4, 5, …] (30 values)")
+    True
+    """
+    whole = compact(value, digits=10, max_items=10**6, max_chars=10**9)
+    short = compact(value)
+    if len(whole) <= 60 or whole == short:
+        return html.escape(whole)
+    return (f"<details><summary>{html.escape(short)}</summary>"
+            f"<span style='overflow-wrap:anywhere'>{html.escape(whole)}</span></details>")
+
+
+def entry_link(entry):
+    """The entry's id as a link to the book page that computes it (trusted HTML).
+
+    Parameters
+    ----------
+    entry : dict
+        A record entry; its ``chapter`` (a page's file stem), if any, is the link's target.
+
+    Returns
+    -------
+    str
+        An HTML anchor, or the escaped id if the entry names no page.
+
+    Examples
+    --------
+    >>> entry_link({"id": "K_f1", "chapter": "passive_controllers"})
+    '<a href="passive_controllers.html">K_f1</a>'
+    >>> entry_link({"id": "x"})
+    'x'
+    """
+    page = entry.get("chapter")
+    name = html.escape(entry["id"])
+    return f'<a href="{html.escape(page)}.html">{name}</a>' if page else name
 
 
 def figure_rows(record):
@@ -166,7 +226,7 @@ def figure_rows(record):
     ...        "claims": [{"claim": "c", "source": "Sec. IV, text on paper Fig. 3", "verdict": "PARTLY"}]}
     >>> row = figure_rows(rec)[2]
     >>> row["link"], row["status"], row["verdict"]
-    ('<a href="passive_controllers.html">passive_controllers</a>', 'redrawn from recorded data', 'PARTLY')
+    ('<a href="gkyp_lemma.html">gkyp_lemma</a>', 'redrawn from recorded data', 'PARTLY')
     >>> figure_rows(rec)[0]["verdict"], figure_rows({"entries": [], "figures": {}})[6]["verdict"]
     ('no claim', 'no checklist')
     """
@@ -232,9 +292,9 @@ def finding_rows(record):
     >>> rec = {"entries": [{"id": "x", "source": "s", "paper": None, "recomputed": 1, "verdict": "new",
     ...                     "note": "n"}]}
     >>> finding_rows(rec)
-    [{'id': 'x', 'source': 's', 'note': 'n'}]
+    [{'id': 'x', 'entry': 'x', 'source': 's', 'note': 'n'}]
     """
-    return [{"id": e["id"], "source": e["source"], "note": e["note"]}
+    return [{"id": e["id"], "entry": entry_link(e), "source": e["source"], "note": e["note"]}
             for e in _entries(record) if e["verdict"] == "new"]
 
 

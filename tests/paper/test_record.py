@@ -95,3 +95,14 @@ def test_record_jobs_refuses_what_is_not_a_process_count(monkeypatch, value):
         record_jobs()
     monkeypatch.setenv(JOBS_ENV, "3")
     assert record_jobs() == 3
+
+
+def test_every_entry_names_the_book_page_that_computes_it():
+    from pathlib import Path
+
+    rec = reproduction_record()
+    book = Path(__file__).resolve().parents[2] / "book"
+    pages = {e["id"]: e["chapter"] for e in rec["entries"]}
+    assert all((book / f"{p}.ipynb").is_file() for p in pages.values()), pages
+    assert pages["bound_f3"] == "printed_bounds" and pages["K_f3"] == "passive_controllers"
+    assert pages["comparators"] == "baselines" and pages["claims_step_halving"] == "report"

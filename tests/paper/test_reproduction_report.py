@@ -90,7 +90,7 @@ def test_figure_rows_cover_every_paper_figure_with_link_status_and_verdict():
     rows = figure_rows(record())
     assert [r["number"] for r in rows] == list(PAPER_FIGURES) == list(range(1, 9))
     by = {r["number"]: r for r in rows}
-    assert by[3]["link"] == '<a href="passive_controllers.html">passive_controllers</a>'
+    assert by[3]["link"] == '<a href="gkyp_lemma.html">gkyp_lemma</a>'
     assert by[3]["status"] == "redrawn from recorded data" and by[3]["record_entry"] == "sigma_max"
     # the worst claim on a figure; a claim on "Fig. 10" is not a claim on paper Fig. 1
     assert by[7]["verdict"] == "FAIL" and by[4]["verdict"] == by[5]["verdict"] == "PARTLY"
@@ -116,7 +116,7 @@ def test_claim_rows():
 
 def test_finding_rows_are_the_new_entries():
     assert [r["id"] for r in finding_rows(record())] == ["sweep", "hf_best"]
-    assert set(finding_rows(record())[0]) == {"id", "source", "note"}
+    assert set(finding_rows(record())[0]) == {"id", "entry", "source", "note"}
 
 
 def test_errata_list_what_differs_and_what_fails():
@@ -165,3 +165,19 @@ def test_html_table_escapes_all_but_the_raw_columns():
 def test_claims_sentence_counts_or_says_the_checklist_is_missing():
     assert claims_sentence(record()) == "The checklist holds 5 claims: 2 PASS, 1 PARTLY and 2 FAIL."
     assert "no claims checklist" in claims_sentence(record(claims=False))
+
+
+def test_printed_rows_show_whole_values_and_link_the_page():
+    rec = {"entries": [
+        {"id": "K_f1", "source": "Sec. IV", "paper": [[0.1048, 15.0897]], "chapter": "passive_controllers",
+         "recomputed": [[0.104946831, 15.09821467]], "verdict": "close", "note": "n"},
+        {"id": "long", "source": "Sec. IV", "paper": list(range(40)), "recomputed": [0.5] * 40,
+         "verdict": "differs", "note": "n"}]}
+    rows = printed_rows(rec)
+    # the short form cuts printed digits (15.09); the full cell keeps every one
+    assert rows[0]["paper"] == "[[0.1048, 15.09]]" and rows[0]["paper_full"] == "[[0.1048, 15.0897]]"
+    assert rows[0]["ours_full"] == "[[0.104946831, 15.09821467]]"
+    assert rows[0]["entry"] == '<a href="passive_controllers.html">K_f1</a>'
+    # a long value is folded, whole, in a details element; an entry without a page is plain text
+    assert rows[1]["paper_full"].startswith("<details><summary>[0, 1, 2, 3, 4, 5, …] (40 values)")
+    assert ", 39]</span></details>" in rows[1]["paper_full"] and rows[1]["entry"] == "long"
