@@ -4,6 +4,11 @@ python -m fdsc reproduce --out DIR [--jobs N]
                                      recompute every artefact of the paper and write
                                      DIR/reproduction.json (the reproduction record), the
                                      chapters on N processes (default: the CPUs, at most 4)
+python -m fdsc cold-times [--book DIR] [--out FILE]
+                                     execute every chapter of the book alone, cold (an empty
+                                     results folder each), and write the times to FILE
+                                     (default: the paper layer's data/cold_times.json, which
+                                     the book's environment page shows); takes many minutes
 """
 
 import argparse
@@ -17,7 +22,7 @@ import numpy as np
 
 from .record import JOBS_ENV, reproduction_record
 
-__all__ = ["main", "reproduce", "to_jsonable", "RECORD_DIGITS"]
+__all__ = ["main", "reproduce", "cold_times_command", "to_jsonable", "RECORD_DIGITS"]
 
 
 #: Significant digits of the floats written to the record (far beyond any printed number; the
@@ -117,6 +122,40 @@ def reproduce(argv=None):
     return 0
 
 
+def cold_times_command(argv=None):
+    """``cold-times [--book DIR] [--out FILE]``: measure every chapter's cold execution time.
+
+    Registered as the command ``cold-times`` of ``python -m fdsc``
+    (:func:`fdsc.paper.environment.measure_cold_times`).
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments after ``cold-times`` (default ``sys.argv[2:]``).
+
+    Returns
+    -------
+    int
+        Exit status (0 on success).
+    """
+    from .environment import COLD_TIMES_FILE, measure_cold_times
+
+    root = Path(__file__).resolve().parents[2]
+    parser = argparse.ArgumentParser(prog="python -m fdsc cold-times",
+                                     description="execute every chapter alone, cold, and time it")
+    parser.add_argument("--book", type=Path, default=root / "book", help="the book's folder")
+    parser.add_argument("--out", type=Path, default=Path(__file__).with_name("data") / COLD_TIMES_FILE,
+                        help="the JSON file to write")
+    args = parser.parse_args(sys.argv[2:] if argv is None else argv)
+    if not (args.book / "_toc.yml").is_file():
+        parser.error(f"--book must be the book's folder (with _toc.yml), found {args.book}")
+    _writable_dir(args.out.parent)
+    result = measure_cold_times(args.book, args.out)
+    print(f"wrote {args.out}: {len(result['chapters'])} chapters, "
+          f"{sum(result['chapters'].values()):.0f} s in all on {result['host']['cpus']} CPUs")
+    return 0
+
+
 def main(argv=None):
     """Entry point of ``python -m fdsc.paper`` (the same commands as ``python -m fdsc``).
 
@@ -132,7 +171,7 @@ def main(argv=None):
     """
     parser = argparse.ArgumentParser(prog="python -m fdsc.paper", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("command", choices=["reproduce"])
+    parser.add_argument("command", choices=["reproduce", "cold-times"])
     parser.add_argument("args", nargs=argparse.REMAINDER)
     args = parser.parse_args(argv)
-    return reproduce(args.args)
+    return (reproduce if args.command == "reproduce" else cold_times_command)(args.args)
