@@ -7,8 +7,8 @@ python -m fdsc reproduce --out DIR [--jobs N]
 python -m fdsc cold-times [--book DIR] [--out FILE]
                                      execute every chapter of the book alone, cold (an empty
                                      results folder each), and write the times to FILE
-                                     (default: the paper layer's data/cold_times.json, which
-                                     the book's environment page shows); takes many minutes
+                                     (default: book/data/cold_times.json, which the book's
+                                     environment page shows); takes many minutes
 """
 
 import argparse
@@ -144,7 +144,7 @@ def cold_times_command(argv=None):
     parser = argparse.ArgumentParser(prog="python -m fdsc cold-times",
                                      description="execute every chapter alone, cold, and time it")
     parser.add_argument("--book", type=Path, default=root / "book", help="the book's folder")
-    parser.add_argument("--out", type=Path, default=Path(__file__).with_name("data") / COLD_TIMES_FILE,
+    parser.add_argument("--out", type=Path, default=root / COLD_TIMES_FILE,
                         help="the JSON file to write")
     args = parser.parse_args(sys.argv[2:] if argv is None else argv)
     if not (args.book / "_toc.yml").is_file():

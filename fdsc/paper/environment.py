@@ -65,8 +65,10 @@ def build_commit(root=None):
     return f"{head} (with uncommitted changes)" if dirty else head
 
 
-#: Where the measured cold execution times of the chapters are kept (:func:`measure_cold_times`).
-COLD_TIMES_FILE = "cold_times.json"
+#: Where the measured cold execution times of the chapters are kept (:func:`measure_cold_times`),
+#: relative to the repository: beside the book, outside the package, so that storing a
+#: measurement does not change the sources' fingerprint it was measured for.
+COLD_TIMES_FILE = "book/data/cold_times.json"
 
 
 def _book_chapters(book):
@@ -102,7 +104,9 @@ def measure_cold_times(book, out, *, timeout: float = 1800.0):
     book : path-like
         The book's folder (with ``_toc.yml``).
     out : path-like
-        The JSON file to write: ``{"commit", "date", "host", "chapters": {stem: seconds}}``.
+        The JSON file to write: ``{"commit", "fingerprint", "date", "host", "chapters":
+        {stem: seconds}}`` (``fingerprint``: :func:`fdsc.paper.cache.fingerprint` of the code
+        measured).
     timeout : float, optional
         Seconds allowed per cell.
 
@@ -139,8 +143,10 @@ def measure_cold_times(book, out, *, timeout: float = 1800.0):
             os.environ.pop("FDSC_CACHE_DIR", None)
         else:
             os.environ["FDSC_CACHE_DIR"] = saved
-    result = {"commit": build_commit(), "date": datetime.date.today().isoformat(),
-              "host": host, "chapters": times}
+    from .cache import fingerprint
+
+    result = {"commit": build_commit(), "fingerprint": fingerprint(),
+              "date": datetime.date.today().isoformat(), "host": host, "chapters": times}
     Path(out).write_text(json.dumps(result, indent=1) + "\n", encoding="utf-8")
     return result
 
@@ -151,12 +157,12 @@ def cold_times():
     Returns
     -------
     dict or None
-        As written by :func:`measure_cold_times`, from the paper layer's data folder.
+        As written by :func:`measure_cold_times` (None outside a checkout of the repository).
     """
     import json
     from pathlib import Path
 
-    path = Path(__file__).with_name("data") / COLD_TIMES_FILE
+    path = Path(__file__).resolve().parents[2] / COLD_TIMES_FILE
     if not path.is_file():
         return None
     return json.loads(path.read_text(encoding="utf-8"))
