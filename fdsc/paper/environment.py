@@ -18,7 +18,7 @@ def environment():
 
     pkgs = {}
     for name in ("numpy", "scipy", "cvxpy", "clarabel", "control", "matplotlib", "numba",
-                 "jupyter-book", "myst-nb", "playwright"):
+                 "jupyter-book", "myst-nb", "playwright", "dask", "distributed"):
         try:
             pkgs[name] = version(name)
         except PackageNotFoundError:
