@@ -35,6 +35,7 @@ _EXPORTS = {
     "frequency": ("BandPeak", "band_peak", "freqresp", "sigma_max", "steady_state_gain", "steady_state_gains",
                   "steady_state_gains"),
     "lmi": ("GKYPResult", "gkyp_certify", "gkyp_gamma"),
+    "multiband": ("FrontPoint", "MultibandResult", "ParetoFront", "pareto_front", "synthesize_multiband"),
     "lyapunov_jumps": ("SwitchingCertificate", "certify_switching", "certify_switching_gain",
                        "switching_forms"),
     "plant": ("LTISystem", "Plant", "as_plant", "as_system"),
@@ -131,6 +132,7 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers and editors
         certify_switching_gain,
         switching_forms,
     )
+    from .multiband import FrontPoint, MultibandResult, ParetoFront, pareto_front, synthesize_multiband
     from .plant import LTISystem, Plant, as_plant, as_system
     from .random_systems import random_hurwitz, random_plant, random_spd, random_system
     from .rules import PRINTED, SwitchRule
@@ -161,6 +163,7 @@ __all__ = [
     "GKYPResult", "gkyp_gamma", "gkyp_certify",
     # synthesis
     "SynthesisResult", "synthesize", "synthesize_hinf", "optimize_gain",
+    "MultibandResult", "synthesize_multiband", "FrontPoint", "ParetoFront", "pareto_front",
     # FD-EEF / FD-EPF
     "PowerSplit", "instantaneous_power", "fdeef", "average_power", "steady_state_power",
     "fdeef_autonomous", "fdeef_parseval_autonomous",
