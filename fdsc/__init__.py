@@ -46,6 +46,7 @@ _EXPORTS = {
                 "localized_dominance"),
     "simulate": ("SimResult", "envelope", "simulate", "time_grid"),
     "stream": ("BatchResult", "Case", "StreamResult", "Trace", "simulate_batch", "simulate_stream"),
+    "supervisor": ("SupervisedRun", "lqr_gain", "shift_signal", "supervise"),
     "switching": ("Theorem1Result", "certify_q", "design_q"),
     "synthesis": ("SynthesisResult", "optimize_gain", "synthesize", "synthesize_hinf"),
     "three_mode": ("ScoreCertificate", "certify_scores", "design_scores"),
@@ -147,6 +148,7 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers and editors
     )
     from .simulate import SimResult, envelope, simulate, time_grid
     from .stream import BatchResult, Case, StreamResult, Trace, simulate_batch, simulate_stream
+    from .supervisor import SupervisedRun, lqr_gain, shift_signal, supervise
     from .switching import Theorem1Result, certify_q, design_q
     from .synthesis import SynthesisResult, optimize_gain, synthesize, synthesize_hinf
     from .three_mode import ScoreCertificate, certify_scores, design_scores
@@ -164,6 +166,8 @@ __all__ = [
     # synthesis
     "SynthesisResult", "synthesize", "synthesize_hinf", "optimize_gain",
     "MultibandResult", "synthesize_multiband", "FrontPoint", "ParetoFront", "pareto_front",
+    # a switching law on the disturbance estimate
+    "SupervisedRun", "supervise", "lqr_gain", "shift_signal",
     # FD-EEF / FD-EPF
     "PowerSplit", "instantaneous_power", "fdeef", "average_power", "steady_state_power",
     "fdeef_autonomous", "fdeef_parseval_autonomous",

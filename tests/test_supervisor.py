@@ -1,0 +1,137 @@
+"""fdsc.supervisor: the predictive-cost supervisor on the disturbance estimate, against
+independent runs (the fixed-gain run after its decision, the copies' monitoring signals, the
+realization through copies), its scale independence, and bad input by name."""
+
+import math
+
+import numpy as np
+import pytest
+
+from fdsc import DimensionError, Piecewise, Plant, Sampled, Sinusoids, simulate
+from fdsc.simulate import time_grid
+from fdsc.supervisor import lqr_gain, shift_signal, supervise
+
+# the README's oscillator with its LF and HF designs
+PLANT = Plant([[0.0, 1.0], [-4.0, -0.4]], [[0.0], [1.0]], [[0.0], [1.0]],
+              [[1.0, 0.0], [0.0, 0.0]], [[0.0], [0.0]], [[0.0], [0.1]])
+GAINS = [np.array([[-21.85, -22.27]]), np.array([[0.495, -1.473]])]
+DT = 1e-2
+SLOW = Sinusoids([1.0, 0.5], [0.2, 0.3])
+
+
+def _energy(loop, d, t0, t1, x0):
+    """∫zᵀz of a fixed loop on [t0, t1] from x0 by the full-trajectory simulator."""
+    run = simulate(loop, shift_signal(d, t0), time_grid(t1 - t0, DT), x0=x0)
+    return run.energy(), run.x[-1]
+
+
+def test_a_one_band_disturbance_gives_the_fixed_gain_run_after_the_first_decision():
+    T = 60.0
+    run = supervise(PLANT, GAINS, SLOW, T, DT, sigma0=1)        # starts on the HF gain
+    assert run.sequence.tolist() == [1, 0] and run.switch_times[0] < 2.0
+    ts = run.switch_times[0]
+    e1, x1 = _energy(PLANT.closed_loop(GAINS[1]), SLOW, 0.0, ts, np.zeros(2))
+    e2, x2 = _energy(PLANT.closed_loop(GAINS[0]), SLOW, ts, T, x1)
+    assert run.energy == pytest.approx(e1 + e2, rel=1e-9)
+    np.testing.assert_allclose(run.x_final, x2, rtol=1e-9, atol=1e-12)
+    assert run.time_share[0] == pytest.approx(1 - ts / T)
+
+
+def test_the_monitoring_signals_are_the_copies_fading_energies():
+    # before the first restart of either bank every copy runs from rest at t = 0: μ_i(t) is the
+    # fading trapezoid integral of ‖z_i‖² of the fixed loop i under d
+    lam, R = 0.5, 20.0
+    run = supervise(PLANT, GAINS, SLOW, 9.0, DT, forgetting=lam, restart=R, keep_every=1)
+    t = time_grid(9.0, DT)
+    decay = math.exp(-lam * DT)
+    for i, K in enumerate(GAINS):
+        f = np.sum(simulate(PLANT.closed_loop(K), SLOW, t).z ** 2, axis=1)
+        ref = np.zeros(t.size)
+        for k in range(1, t.size):
+            ref[k] = decay * ref[k - 1] + 0.5 * DT * (decay * f[k - 1] + f[k])
+        np.testing.assert_allclose(run.mu[:, i], ref, rtol=1e-10, atol=1e-15)
+
+
+def test_the_law_does_not_depend_on_the_disturbances_scale():
+    d = Piecewise([0.0, 40.0, 100.0], [SLOW, Sinusoids([1.0], [12.0])])
+    a = supervise(PLANT, GAINS, d, 100.0, DT)
+    big = Piecewise(d.breaks, [p.scaled(1e3) for p in d.parts])
+    b = supervise(PLANT, GAINS, big, 100.0, DT)
+    assert a.sequence.tolist() == b.sequence.tolist()
+    np.testing.assert_array_equal(a.switch_times, b.switch_times)
+    assert b.energy == pytest.approx(1e6 * a.energy, rel=1e-9)
+    assert 40.0 < a.switch_times[-1] < 50.0 and a.sequence[-1] == 1
+
+
+def test_the_realization_through_copies_equals_the_fixed_run_without_switching():
+    # plant and copies start equal, so x = x̂_σ for all time and u = K_σ x: the fixed-gain run
+    x0 = np.array([0.3, -0.1])
+    K0 = lqr_gain(PLANT)
+    run = supervise(PLANT, GAINS, SLOW, 30.0, DT, K0=K0, x0=x0, hysteresis=1e9)
+    assert run.switches == 0 and run.sequence.tolist() == [0]
+    e, x = _energy(PLANT.closed_loop(GAINS[0]), SLOW, 0.0, 30.0, x0)
+    assert run.energy == pytest.approx(e, rel=1e-9)
+    np.testing.assert_allclose(run.x_final, x, rtol=1e-9, atol=1e-12)
+
+
+def test_lqr_gain_solves_the_riccati_equation():
+    K = lqr_gain(PLANT)
+    A, B, C, D = PLANT.A, PLANT.B2, PLANT.C, PLANT.D2
+    assert np.all(np.linalg.eigvals(A + B @ K).real < 0)
+    # the optimal cost matrix P: K = −R⁻¹(BᵀP + DᵀC) and the Riccati residual vanishes
+    R, S = D.T @ D, C.T @ D
+    # K = −R⁻¹(BᵀP + Sᵀ) with P the stabilizing solution of AᵀP + PA − (PB + S)R⁻¹(BᵀP + Sᵀ) + CᵀC = 0:
+    # recover P from the Lyapunov equation of the closed loop, (A + BK)ᵀP + P(A + BK) = −(C + DK)ᵀ(C + DK)
+    from scipy.linalg import solve_continuous_lyapunov
+    Acl, Ccl = A + B @ K, C + D @ K
+    P = solve_continuous_lyapunov(Acl.T, -Ccl.T @ Ccl)
+    np.testing.assert_allclose(K, -np.linalg.solve(R, B.T @ P + S.T), rtol=1e-8)
+
+
+@pytest.mark.parametrize(("kwargs", "error", "match"), [
+    (dict(gains=GAINS[:1]), ValueError, "at least two candidate gains"),
+    (dict(gains=GAINS[0]), TypeError, "sequence of gains"),
+    (dict(gains=[GAINS[0], np.zeros((1, 2)) + [[5.0, 0.0]]]), ValueError, r"gains\[1\] must stabilize"),
+    (dict(gains=[GAINS[0], np.zeros((1, 3))]), DimensionError, r"gains\[1\]"),
+    (dict(d=Sampled(np.zeros(11), DT)), TypeError, "d must be an fdsc.Sinusoids or fdsc.Piecewise"),
+    (dict(forgetting=0.0), ValueError, "forgetting"),
+    (dict(hysteresis=-0.1), ValueError, "hysteresis"),
+    (dict(restart=2 * DT), ValueError, "restart must be at least 4 steps"),
+    (dict(sigma0=2), ValueError, r"sigma0 must be a candidate's index in \[0, 2\)"),
+    (dict(sigma0=True), ValueError, "sigma0"),
+    (dict(K0=np.array([[5.0, 0.0]])), ValueError, "K0 must stabilize"),
+    (dict(K0=np.zeros((2, 2))), DimensionError, "K0"),
+    (dict(x0=[1.0]), DimensionError, "x0"),
+    (dict(horizon=0.015), ValueError, "horizon"),
+])
+def test_bad_input_is_refused_by_name(kwargs, error, match):
+    args = dict(plant=PLANT, gains=GAINS, d=SLOW, horizon=1.0, dt=DT) | kwargs
+    with pytest.raises(error, match=match):
+        supervise(args.pop("plant"), args.pop("gains"), args.pop("d"), args.pop("horizon"),
+                  args.pop("dt"), **args)
+
+
+def test_a_plant_whose_disturbance_cannot_be_estimated_is_refused():
+    two = Plant(PLANT.A, np.eye(2), PLANT.B2, PLANT.C, np.zeros((2, 2)), PLANT.D2)
+    with pytest.raises(ValueError, match="one disturbance input"):
+        supervise(two, GAINS, SLOW, 1.0, DT)
+    blind = Plant(PLANT.A, np.zeros((2, 1)), PLANT.B2, PLANT.C, PLANT.D1, PLANT.D2)
+    with pytest.raises(ValueError, match="B1 is zero"):
+        supervise(blind, GAINS, SLOW, 1.0, DT)
+
+
+def test_the_divergence_monitor_is_applied_at_the_switches(monkeypatch):
+    # the rule itself is tested with the simulators (tests/test_divergence.py); here its plumbing:
+    # a state beyond the monitor's threshold at a switch or at the end is warned about, once
+    import warnings
+
+    from fdsc import UnstableRunWarning, _divergence
+
+    d = Piecewise([0.0, 40.0, 100.0], [SLOW, Sinusoids([1.0], [12.0])])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        supervise(PLANT, GAINS, d, 100.0, DT)                     # the real threshold: silent
+    monkeypatch.setattr(_divergence, "threshold", lambda *a: 1e-12)
+    with pytest.warns(UnstableRunWarning, match=r"supervise: the switched run diverges: at t = ") as rec:
+        supervise(PLANT, GAINS, d, 100.0, DT)
+    assert len([w for w in rec if issubclass(w.category, UnstableRunWarning)]) == 1
