@@ -60,9 +60,9 @@ class SupervisedRun:
     x_final : (n,) ndarray
         State at the horizon.
     t_mu : (M,) ndarray
-        Times (s) at which ``mu`` is kept (every ``keep_every`` samples).
+        The decision points (s).
     mu : (M, I) ndarray
-        The monitoring signals the law read at those times.
+        The monitoring signals the law read there.
     """
 
     horizon: float
@@ -113,41 +113,42 @@ def shift_signal(d, tau: float):
     raise TypeError(f"d must be an fdsc.Sinusoids or fdsc.Piecewise, but found {type(d).__name__}")
 
 
-def _bank(modes, d, N, dt, decay, starts):
-    """μ of every candidate at every sample for copies restarted from rest at ``starts``."""
-    from scipy.signal import lfilter
+def _bank(modes, d, n_blocks, block, dt, decay, starts):
+    """μ of every candidate at the decision points 0, block, 2 block, … (in steps of dt) for
+    copies restarted from rest at the decision points ``starts`` (indices)."""
+    from .stream import simulate_stream
 
-    from .simulate import simulate
-
-    mu = np.zeros((N, len(modes)))
-    for a, b in zip(starts, [*starts[1:], N], strict=True):
-        if b - a < 2:
+    mu = np.zeros((n_blocks + 1, len(modes)))
+    for a, b in zip(starts, [*starts[1:], n_blocks], strict=True):
+        if b <= a:
             continue
-        t = np.arange(b - a) * dt
-        d_seg = shift_signal(d, a * dt)
+        d_seg = shift_signal(d, a * block * dt)
         for i, m in enumerate(modes):
-            f = np.sum(simulate(m, d_seg, t).z ** 2, axis=1)
-            # μ_k = e^{−λdt} μ_{k−1} + dt/2 (e^{−λdt} f_{k−1} + f_k), μ at the restart 0: the
-            # filter's response minus that of its first term
-            acc = lfilter([0.5 * dt, 0.5 * dt * decay], [1.0, -decay], f)
-            acc -= 0.5 * dt * f[0] * decay ** np.arange(b - a)
-            mu[a:b, i] = acc
+            r = simulate_stream(m, d_seg, (b - a) * block * dt, dt, cumulative_every=block * dt)
+            cum = r.energy_cum                               # ∫₀ᵗ ‖z‖² at the decision points
+            if cum.size == b - a:                            # the grid stops before the end
+                cum = np.append(cum, r.energy)
+            blocks = np.diff(cum)                            # energy of each decision interval
+            acc = np.zeros(b - a + 1)
+            for k, e in enumerate(blocks, start=1):          # μ_k = e^{−λΔ} μ_{k−1} + E_k
+                acc[k] = decay * acc[k - 1] + e
+            mu[a:b + 1, i] = acc
     return mu
 
 
-def _monitor(modes, d, N, dt, lam, restart_steps):
-    """μ of every candidate at every sample: two banks of copies restarted from rest every
-    ``restart_steps`` samples, half a period apart (both from 0 at first); at each sample the
-    bank whose copies are older."""
-    decay = math.exp(-lam * dt)
-    half = restart_steps // 2
-    starts0 = list(range(0, N, restart_steps))
-    starts1 = [0, *range(half, N, restart_steps)]
-    k = np.arange(N)
+def _monitor(modes, d, n_blocks, block, dt, lam, restart_blocks):
+    """μ of every candidate at every decision point: two banks of copies restarted from rest
+    every ``restart_blocks`` decision intervals, half a period apart (both from 0 at first); at
+    each point the bank whose copies are older."""
+    decay = math.exp(-lam * block * dt)
+    half = max(1, restart_blocks // 2)
+    starts0 = list(range(0, n_blocks, restart_blocks))
+    starts1 = [0, *range(half, n_blocks, restart_blocks)]
+    k = np.arange(n_blocks + 1)
     age0 = k - np.array(starts0)[np.searchsorted(starts0, k, side="right") - 1]
     age1 = k - np.array(starts1)[np.searchsorted(starts1, k, side="right") - 1]
-    mu0 = _bank(modes, d, N, dt, decay, starts0)
-    mu1 = _bank(modes, d, N, dt, decay, starts1)
+    mu0 = _bank(modes, d, n_blocks, block, dt, decay, starts0)
+    mu1 = _bank(modes, d, n_blocks, block, dt, decay, starts1)
     return np.where((age0 >= age1)[:, None], mu0, mu1)
 
 
@@ -207,8 +208,8 @@ def _augmented(plant, gains, K0, m):
 
 
 def supervise(plant, gains, d, horizon: float, dt: float, *, forgetting: float = 0.5,
-              hysteresis: float = 0.2, restart: float = 20.0, K0=None, x0=None, sigma0: int = 0,
-              keep_every: int = 100) -> SupervisedRun:
+              hysteresis: float = 0.2, restart: float = 20.0, decide_every: float = 0.1,
+              warmup: float = 0.0, K0=None, x0=None, sigma0: int = 0) -> SupervisedRun:
     """Run the predictive-cost supervisor on the disturbance estimate (module docstring).
 
     Parameters
@@ -228,8 +229,18 @@ def supervise(plant, gains, d, horizon: float, dt: float, *, forgetting: float =
         h ≥ 0: switch from q to p when ``(1 + h) μ_p < μ_q`` (strict, so that equal costs, such
         as those of copies at rest, keep the active candidate).
     restart : float, optional
-        Period (s) of the monitoring copies' restarts (≥ 4 dt): the law forgets ŵ older than
-        this.
+        Period (s) of the monitoring copies' restarts (at least two decision intervals): the law
+        forgets ŵ older than this, and reads copies that have run at least ``restart / 2``
+        (except in the first ``restart / 2`` seconds).
+    warmup : float, optional
+        No decision before this time (s; ``sigma0`` is active until then). Early on the copies'
+        costs reflect their rise from rest as much as the disturbance, so the first decisions
+        may be revised; waiting costs the time spent with ``sigma0``. Default 0: decide from
+        the first decision point.
+    decide_every : float, optional
+        The law decides every this many seconds (a multiple of ``dt``; ``horizon`` a multiple
+        of it). The monitoring signals are updated there, each decision interval's energy
+        weighed as a whole: ``μ_k = e^{−λΔ} μ_{k−1} + ∫ over the interval of ‖z_i‖²``.
     K0 : (m_u, n) array_like, optional
         None (default): the active gain acts directly, ``u = K_σ x``; at a switch to a high gain
         the state the previous gain left turns into a spike of u. Given (a gentle stabilizing
@@ -241,8 +252,6 @@ def supervise(plant, gains, d, horizon: float, dt: float, *, forgetting: float =
         Initial state of the plant (default 0); the monitoring copies start from rest.
     sigma0 : int, optional
         The candidate active at t = 0.
-    keep_every : int, optional
-        Keep μ every this many samples in the result.
 
     Returns
     -------
@@ -275,8 +284,8 @@ def supervise(plant, gains, d, horizon: float, dt: float, *, forgetting: float =
     ...               [[1.0, 0.0], [0.0, 0.0]], [[0.0], [0.0]], [[0.0], [0.1]])
     >>> gains = [[[-21.85, -22.27]], [[0.495, -1.473]]]          # LF design, HF design
     >>> d = Piecewise([0.0, 60.0, 200.0], [Sinusoids([1.0], [0.2]), Sinusoids([1.0], [12.0])])
-    >>> run = supervise(plant, gains, d, 120.0, 1e-2)
-    >>> run.sequence[-2:].tolist(), bool(60.0 < run.switch_times[-1] < 70.0)
+    >>> run = supervise(plant, gains, d, 120.0, 1e-2, warmup=5.0)
+    >>> run.sequence.tolist(), bool(60.0 < run.switch_times[-1] < 70.0)
     ([0, 1], True)
     """
     from ._validation import as_matrix
@@ -309,9 +318,18 @@ def supervise(plant, gains, d, horizon: float, dt: float, *, forgetting: float =
     h = as_nonnegative("hysteresis", hysteresis)
     t = time_grid(horizon, dt)
     N = t.size
-    restart_steps = round(as_positive("restart", restart) / dt)
-    if restart_steps < 4:
-        raise ValueError(f"restart must be at least 4 steps of dt = {dt:g} s, but found {restart!r}")
+    block = round(as_positive("decide_every", decide_every) / dt)
+    if block < 1 or abs(block * dt - decide_every) > 1e-9 * decide_every:
+        raise ValueError(f"decide_every must be a whole number of steps of dt = {dt:g} s, but found "
+                         f"{decide_every!r}")
+    if (N - 1) % block:
+        raise ValueError(f"horizon must be a whole number of decision intervals (decide_every = "
+                         f"{decide_every:g} s), but found {horizon!r}")
+    n_blocks = (N - 1) // block
+    restart_blocks = round(as_positive("restart", restart) / (block * dt))
+    if restart_blocks < 2:
+        raise ValueError(f"restart must be at least two decision intervals ({2 * block * dt:g} s), "
+                         f"but found {restart!r}")
     x = np.zeros(n) if x0 is None else as_vector("x0", x0, n)
     if isinstance(sigma0, bool) or not isinstance(sigma0, int | np.integer) or not 0 <= sigma0 < len(modes):
         raise ValueError(f"sigma0 must be a candidate's index in [0, {len(modes)}), but found {sigma0!r}")
@@ -322,18 +340,22 @@ def supervise(plant, gains, d, horizon: float, dt: float, *, forgetting: float =
             raise ValueError(f"K0 must stabilize the plant, but A + B2 K0 has an eigenvalue with "
                              f"real part {worst:.4g}")
         x = np.tile(x, len(gains) + 1)           # the plant and the copies, all from x0
-    keep_every = int(as_positive("keep_every", keep_every))
-    mu = _monitor(modes, d, N, dt, lam, restart_steps)
-    # the law on the samples: from q to the cheapest p when (1 + h) μ_p < μ_q
-    sigma = np.empty(N, dtype=np.int64)
+    mu = _monitor(modes, d, n_blocks, block, dt, lam, restart_blocks)
+    # the law at the decision points: from q to the cheapest p when (1 + h) μ_p < μ_q
+    sigma = np.empty(n_blocks + 1, dtype=np.int64)
     q = int(sigma0)
-    for k in range(N):
+    first = max(1, math.ceil(as_nonnegative("warmup", warmup) / (block * dt) - 1e-9))
+    for k in range(n_blocks + 1):
         p = int(np.argmin(mu[k]))
+        if k < first:
+            sigma[k] = q
+            continue
         if p != q and (1.0 + h) * mu[k, p] < mu[k, q]:    # strict: equal costs (at rest) keep q
             q = p
         sigma[k] = q
-    change = np.flatnonzero(np.diff(sigma)) + 1            # first sample of each new candidate
-    bounds = [0, *change.tolist(), N - 1]
+    sigma = sigma[:-1]                                      # the last point decides nothing
+    change = np.flatnonzero(np.diff(sigma)) + 1            # first interval of each new candidate
+    bounds = [0, *(change * block).tolist(), N - 1]        # in steps of dt
     seq = [int(sigma[0]), *sigma[change].tolist()]
     energy = input_energy = 0.0
     loops = {m: modes[m] if K0 is None else _augmented(plant, gains, K0, m) for m in set(seq)}
@@ -353,6 +375,6 @@ def supervise(plant, gains, d, horizon: float, dt: float, *, forgetting: float =
                           UnstableRunWarning, stacklevel=2)
             limit = math.inf
     share = np.bincount(seq, weights=np.diff(bounds), minlength=len(modes)) / (N - 1)
-    keep = np.arange(0, N, keep_every)
     return SupervisedRun(float(horizon), float(dt), float(energy), float(input_energy),
-                         change * dt, np.array(seq), share, x[:n], t[keep], mu[keep])
+                         change * block * dt, np.array(seq), share, x[:n],
+                         np.arange(n_blocks + 1) * block * dt, mu)

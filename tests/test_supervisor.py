@@ -27,8 +27,9 @@ def _energy(loop, d, t0, t1, x0):
 
 def test_a_one_band_disturbance_gives_the_fixed_gain_run_after_the_first_decision():
     T = 60.0
-    run = supervise(PLANT, GAINS, SLOW, T, DT, sigma0=1)        # starts on the HF gain
-    assert run.sequence.tolist() == [1, 0] and run.switch_times[0] < 2.0
+    run = supervise(PLANT, GAINS, SLOW, T, DT, sigma0=1, warmup=5.0)   # starts on the HF gain
+    # the first decision comes at the end of the warm-up
+    assert run.sequence.tolist() == [1, 0] and run.switch_times[0] == pytest.approx(5.0)
     ts = run.switch_times[0]
     e1, x1 = _energy(PLANT.closed_loop(GAINS[1]), SLOW, 0.0, ts, np.zeros(2))
     e2, x2 = _energy(PLANT.closed_loop(GAINS[0]), SLOW, ts, T, x1)
@@ -38,18 +39,23 @@ def test_a_one_band_disturbance_gives_the_fixed_gain_run_after_the_first_decisio
 
 
 def test_the_monitoring_signals_are_the_copies_fading_energies():
-    # before the first restart of either bank every copy runs from rest at t = 0: μ_i(t) is the
-    # fading trapezoid integral of ‖z_i‖² of the fixed loop i under d
-    lam, R = 0.5, 20.0
-    run = supervise(PLANT, GAINS, SLOW, 9.0, DT, forgetting=lam, restart=R, keep_every=1)
+    # before the first restart of either bank every copy runs from rest at t = 0: μ_i at the
+    # decision points is the fading sum of the fixed loop i's energy over each decision
+    # interval, here from the full-trajectory simulator (Simpson's rule on each interval)
+    lam, R, step = 0.5, 20.0, 0.1
+    run = supervise(PLANT, GAINS, SLOW, 9.0, DT, forgetting=lam, restart=R, decide_every=step)
     t = time_grid(9.0, DT)
-    decay = math.exp(-lam * DT)
+    per = round(step / DT)
+    decay = math.exp(-lam * step)
     for i, K in enumerate(GAINS):
-        f = np.sum(simulate(PLANT.closed_loop(K), SLOW, t).z ** 2, axis=1)
-        ref = np.zeros(t.size)
-        for k in range(1, t.size):
-            ref[k] = decay * ref[k - 1] + 0.5 * DT * (decay * f[k - 1] + f[k])
-        np.testing.assert_allclose(run.mu[:, i], ref, rtol=1e-10, atol=1e-15)
+        z2 = np.sum(simulate(PLANT.closed_loop(K), SLOW, t).z ** 2, axis=1)
+        ref = [0.0]
+        for k in range(1, run.t_mu.size):
+            block = z2[(k - 1) * per:k * per + 1]
+            e = DT / 3 * (block[0] + block[-1] + 4 * block[1:-1:2].sum() + 2 * block[2:-1:2].sum())
+            ref.append(decay * ref[-1] + e)
+        np.testing.assert_allclose(run.mu[:, i], ref, rtol=1e-8, atol=1e-14)
+    np.testing.assert_allclose(run.t_mu, np.arange(91) * step)
 
 
 def test_the_law_does_not_depend_on_the_disturbances_scale():
@@ -96,7 +102,10 @@ def test_lqr_gain_solves_the_riccati_equation():
     (dict(d=Sampled(np.zeros(11), DT)), TypeError, "d must be an fdsc.Sinusoids or fdsc.Piecewise"),
     (dict(forgetting=0.0), ValueError, "forgetting"),
     (dict(hysteresis=-0.1), ValueError, "hysteresis"),
-    (dict(restart=2 * DT), ValueError, "restart must be at least 4 steps"),
+    (dict(warmup=-1.0), ValueError, "warmup"),
+    (dict(restart=0.15), ValueError, "restart must be at least two decision intervals"),
+    (dict(decide_every=0.015), ValueError, "decide_every must be a whole number of steps"),
+    (dict(decide_every=0.3), ValueError, "horizon must be a whole number of decision intervals"),
     (dict(sigma0=2), ValueError, r"sigma0 must be a candidate's index in \[0, 2\)"),
     (dict(sigma0=True), ValueError, "sigma0"),
     (dict(K0=np.array([[5.0, 0.0]])), ValueError, "K0 must stabilize"),
