@@ -84,7 +84,7 @@ def test_warnings_on_the_workers_are_raised_again_with_the_batch_index(client):
     A1 = np.array([[-0.1, 1.0], [-10.0, -0.1]])
     A2 = np.array([[-0.1, 10.0], [-1.0, -0.1]])
     B = np.array([[0.0], [1.0]])
-    pair = [fdsc.LTISystem(A1, B, np.eye(2), np.zeros((2, 1))), fdsc.LTISystem(A2, B, np.eye(2), np.zeros((2, 1)))]
+    pair = [fdsc.LTISystem(A, B, np.eye(2), np.zeros((2, 1))) for A in (A1, A2)]
     S, Z = np.array([[0.0, -0.5], [-0.5, 0.0]]), np.zeros((2, 2))
     grow = [np.block([[Z, Z], [Z, S]]), np.block([[Z, Z], [Z, -S]])]
     ok = Case(pair[0], Sinusoids([0.1], [1.0]), 20.0, 1e-3, x0=[1.0, 0.0])

@@ -66,10 +66,13 @@ def test_lmi_and_peak_agree_in_the_record():
 
 
 def test_chapters_on_several_processes_give_the_record_of_one(monkeypatch, tmp_path):
-    # two cheap chapters computed by two fresh processes sharing a results folder equal the same
-    # chapters computed here, one after the other, bit for bit
+    # two cheap chapters computed by two fresh processes sharing a results folder give the same
+    # record as the same chapters computed here, one after the other: equal to the record's ten
+    # significant digits (the workers cap their BLAS threads, so a sum may round differently in
+    # its last bits than in this process, e.g. 2.382734138221e-05 against 2.382734138233e-05)
     from fdsc.paper import frequency_ranges, inputs
     from fdsc.paper.cache import CACHE_ENV, shared_results
+    from fdsc.paper.cli import to_jsonable
     from fdsc.paper.record import chapter_parts
 
     chapters = (inputs, frequency_ranges)
@@ -80,10 +83,11 @@ def test_chapters_on_several_processes_give_the_record_of_one(monkeypatch, tmp_p
     with shared_results():
         serial = chapter_parts(chapters, 1)
     assert [e["id"] for p in parallel for e in p.entries] == [e["id"] for p in serial for e in p.entries]
-    np.testing.assert_equal([(p.entries, p.figures) for p in parallel],
-                            [(p.entries, p.figures) for p in serial])
-    # the worker processes wrote their results into the shared folder
-    assert any((tmp_path / "parallel").glob("fdsc.paper.frequency_ranges.*.pickle"))
+    assert to_jsonable([(p.entries, p.figures) for p in parallel]) == to_jsonable(
+        [(p.entries, p.figures) for p in serial])
+    # the worker processes wrote their results into the shared folder (the cached results of the
+    # chapter frequency_ranges live in its sibling modules, e.g. fdsc.paper.paley_wiener)
+    assert any((tmp_path / "parallel").glob("fdsc.paper.paley_wiener.*.pickle"))
 
 
 @pytest.mark.parametrize("value", ["0", "-2", "two", "1.5"])
