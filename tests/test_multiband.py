@@ -28,7 +28,7 @@ def designs(plant):
 def front(plant, designs):
     # from the LF design's own LF peak to the HF design's: the whole trade-off between the two
     lo, hi = designs["LF"][1], designs["HF"][1]
-    return pareto_front(plant, HF, LF, [lo, np.sqrt(lo * hi), hi], maxiter=400)
+    return pareto_front(plant, HF, LF, [lo, np.sqrt(lo * hi), hi], maxiter=150)
 
 
 def test_the_front_meets_its_bounds_and_never_rises(front):
@@ -70,7 +70,7 @@ def test_the_lmi_design_meets_its_bound_and_is_certified(plant, designs):
     assert res.gamma_lmi[1] <= beta * (1 + 1e-6)
     assert np.all(res.gamma_sweep <= res.gamma_lmi * (1 + 1e-5)) and np.all(res.poles.real < 0)
     # sharing one slack between the bands is conservative: the front does better at that bound
-    f = pareto_front(plant, HF, LF, [beta], maxiter=300)
+    f = pareto_front(plant, HF, LF, [beta], maxiter=150)
     assert f.peaks()[0, 0] <= res.gamma_sweep[0]
 
 
