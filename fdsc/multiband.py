@@ -30,7 +30,7 @@ from ._validation import as_count, as_nonnegative, as_positive, as_vector, check
 from .bands import Band
 from .exceptions import SolverError, VerificationError
 from .frequency import band_peak, sigma_max
-from .lmi import DEFAULT_MARGIN, _sym, solve_checked
+from .lmi import DEFAULT_MARGIN, solve_checked
 from .plant import Plant
 from .synthesis import (
     DEFAULT_EPSILON,
@@ -40,8 +40,11 @@ from .synthesis import (
     _check,
     _herm_pair,
     _neg_def,
+    _objective_grid,
     _pos_def,
+    _stability_lmis,
     check_stabilizable,
+    synthesize,
 )
 
 __all__ = ["MultibandResult", "FrontPoint", "ParetoFront", "synthesize_multiband", "pareto_front"]
@@ -182,10 +185,7 @@ def synthesize_multiband(plant: Plant, objective: Band, constraints, *,
     betas = np.array([beta for _, beta in cons_bands])
     cons += [g <= beta**2 for g, beta in zip(gs[1:], betas, strict=True)]
     Ps = cp.Variable((n, n), symmetric=True, name="P_s")
-    ZA = plant.A @ X + plant.B2 @ Y
-    stab = cp.bmat([[-epsilon * (X + X.T), Ps - X + epsilon * ZA.T],
-                    [Ps - X.T + epsilon * ZA, ZA + ZA.T]])
-    cons += [Ps >> margin * np.eye(n), _sym(stab) << -margin * np.eye(2 * n)]
+    cons += _stability_lmis(plant, X, Y, Ps, epsilon, margin)
     prob = cp.Problem(cp.Minimize(gs[0]), cons)
     what = (f"multi-band synthesis ({objective.label} subject to "
             + ", ".join(f"{b.label} ≤ {beta:g}" for b, beta in cons_bands) + ")")
@@ -357,8 +357,6 @@ def pareto_front(plant: Plant, objective: Band, constrained: Band, betas, *, n_g
     >>> bool(np.all(p[:, 1] <= front.betas * (1 + 1e-6))), bool(np.all(np.diff(p[:, 0]) <= 1e-9))
     (True, True)
     """
-    from .frequency import band_peak as _band_peak
-    from .synthesis import _objective_grid, synthesize
 
     plant = _check(plant, objective)
     check_type("constrained", constrained, Band)
@@ -382,7 +380,7 @@ def pareto_front(plant: Plant, objective: Band, constrained: Band, betas, *, n_g
         cl = plant.closed_loop(K)
         if not cl.is_hurwitz():
             return None
-        return np.array([_band_peak(cl, objective).gamma, _band_peak(cl, constrained).gamma])
+        return np.array([band_peak(cl, objective).gamma, band_peak(cl, constrained).gamma])
 
     # the candidates every bound may fall back on: the two designs, then each point found
     known = [(e.K, exact(e.K)) for e in ends]

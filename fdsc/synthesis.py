@@ -245,6 +245,16 @@ def _band_lmi(plant, band, X, Y, P, Q, g, sigma):
     return re, im
 
 
+def _stability_lmis(plant, X, Y, Ps, epsilon, margin):
+    """The Lyapunov LMIs (dual form, slack ``[εI; I] Xᵀ``) that make ``A + B2 Y X⁻¹`` Hurwitz,
+    sharing X and Y with the band LMIs."""
+    n = plant.n_states
+    ZA = plant.A @ X + plant.B2 @ Y
+    stab = cp.bmat([[-epsilon * (X + X.T), Ps - X + epsilon * ZA.T],
+                    [Ps - X.T + epsilon * ZA, ZA + ZA.T]])
+    return [Ps >> margin * np.eye(n), _sym(stab) << -margin * np.eye(2 * n)]
+
+
 def synthesize(plant: Plant, band: Band, *, epsilon: float = DEFAULT_EPSILON,
                sigma: float = DEFAULT_SIGMA, margin: float = DEFAULT_MARGIN,
                stability: bool = True) -> SynthesisResult:
@@ -319,12 +329,9 @@ def synthesize(plant: Plant, band: Band, *, epsilon: float = DEFAULT_EPSILON,
     Q = _herm_pair(n, "Q", cplx)
     Ps = cp.Variable((n, n), symmetric=True, name="P_s")
     re, im = _band_lmi(plant, band, X, Y, P, Q, g, sigma)
-    ZA = plant.A @ X + plant.B2 @ Y
-    stab = cp.bmat([[-epsilon * (X + X.T), Ps - X + epsilon * ZA.T],
-                    [Ps - X.T + epsilon * ZA, ZA + ZA.T]])
     cons = [_neg_def(re, im, margin), _pos_def(*Q, margin)]
     if stability:
-        cons += [Ps >> margin * np.eye(n), _sym(stab) << -margin * np.eye(2 * n)]
+        cons += _stability_lmis(plant, X, Y, Ps, epsilon, margin)
     if cplx:
         cons += [P[1] + P[1].T == 0, Q[1] + Q[1].T == 0]
     prob = cp.Problem(cp.Minimize(g), cons)
