@@ -46,7 +46,9 @@ _EXPORTS = {
                 "localized_dominance"),
     "simulate": ("SimResult", "envelope", "simulate", "time_grid"),
     "stream": ("BatchResult", "Case", "StreamResult", "Trace", "simulate_batch", "simulate_stream"),
-    "supervisor": ("SupervisedRun", "lqr_gain", "shift_signal", "supervise"),
+    "supervisor": ("LAWS", "Prepared", "SupervisedRun", "Supervisor", "band_filter", "lqr_gain",
+                   "shift_signal", "supervise"),
+    "gc_dwell": ("DwellCertificate", "geromel_colaneri_dwell"),
     "switching": ("Theorem1Result", "certify_q", "design_q"),
     "synthesis": ("SynthesisResult", "optimize_gain", "synthesize", "synthesize_hinf"),
     "three_mode": ("ScoreCertificate", "certify_scores", "design_scores"),
@@ -126,6 +128,7 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers and editors
         VerificationError,
     )
     from .frequency import BandPeak, band_peak, freqresp, sigma_max, steady_state_gain, steady_state_gains
+    from .gc_dwell import DwellCertificate, geromel_colaneri_dwell
     from .lmi import GKYPResult, gkyp_certify, gkyp_gamma
     from .lyapunov_jumps import (
         SwitchingCertificate,
@@ -148,7 +151,16 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers and editors
     )
     from .simulate import SimResult, envelope, simulate, time_grid
     from .stream import BatchResult, Case, StreamResult, Trace, simulate_batch, simulate_stream
-    from .supervisor import SupervisedRun, lqr_gain, shift_signal, supervise
+    from .supervisor import (
+        LAWS,
+        Prepared,
+        SupervisedRun,
+        Supervisor,
+        band_filter,
+        lqr_gain,
+        shift_signal,
+        supervise,
+    )
     from .switching import Theorem1Result, certify_q, design_q
     from .synthesis import SynthesisResult, optimize_gain, synthesize, synthesize_hinf
     from .three_mode import ScoreCertificate, certify_scores, design_scores
@@ -167,7 +179,8 @@ __all__ = [
     "SynthesisResult", "synthesize", "synthesize_hinf", "optimize_gain",
     "MultibandResult", "synthesize_multiband", "FrontPoint", "ParetoFront", "pareto_front",
     # a switching law on the disturbance estimate
-    "SupervisedRun", "supervise", "lqr_gain", "shift_signal",
+    "Supervisor", "Prepared", "SupervisedRun", "supervise", "LAWS", "band_filter", "lqr_gain",
+    "shift_signal", "DwellCertificate", "geromel_colaneri_dwell",
     # FD-EEF / FD-EPF
     "PowerSplit", "instantaneous_power", "fdeef", "average_power", "steady_state_power",
     "fdeef_autonomous", "fdeef_parseval_autonomous",

@@ -19,10 +19,28 @@ minutes), so the copies are restarted from rest every ``restart`` seconds, in tw
 period apart: the law reads the bank whose copies are older (between ``restart / 2`` and
 ``restart`` seconds), and μ counts from that bank's restart.
 
+The **band-power law** (``law="band_power"``) is the paper's frequency selectiveness applied to
+the disturbance instead of the state: monitor i filters ŵ through a second-order Butterworth
+filter of band i (:func:`band_filter`), μ_i is the filtered ŵ's fading energy (a fading-memory
+FD-EEF of ŵ), and the law picks the gain meant for the band with the largest μ, with the same
+relative hysteresis.
+
 Because ŵ = d does not depend on the active gain, the switching signal is a function of ``d``
-alone: it is computed first, from the copies (exact LTI runs), and the switched loop is then run
-exactly along it, piece by piece from the carried-over state (:func:`fdsc.simulate_stream` on
-each piece). Decisions are taken at the samples of the grid.
+alone: the monitors are exact LTI runs, integrated exactly between decision points
+(:mod:`fdsc._blocks`, no quadrature), so the decisions do not depend on a simulation step. The
+switched loop is then run along them, exactly as well by default, or by
+:func:`fdsc.simulate_stream` at a given step. :class:`Supervisor` prepares one disturbance once
+(:meth:`Supervisor.prepare`), after which many settings of the law, fixed candidates, segment
+laws and the clairvoyant per-segment oracle each cost one pass over the decision grid.
+
+**Realizations.** Direct, ``u = K_σ x``: a switch applies the new gain to the state the previous
+gain left, which under a high gain (the generic example's H∞ gain is ~2·10⁷) is a spike of u;
+stability under the law then needs a dwell time (``min_dwell``, certified by
+:func:`fdsc.geromel_colaneri_dwell`). Through copies, ``u = K0 x + (K_σ − K0) x̂_σ`` (Hespanha
+and Morse, Automatica 2002): with every copy x̂_i a stable loop driven by ŵ, the error x − x̂_σ
+obeys ė = (A + B2 K0) e between switches and jumps by x̂_q − x̂_p at a switch, so with
+switches at most once per decision interval the state stays bounded and, for d = 0, decays,
+whatever the law does.
 """
 
 from __future__ import annotations
@@ -32,13 +50,15 @@ import warnings
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 
 from . import _divergence
 from ._validation import as_nonnegative, as_positive, as_vector, check_type
 from .exceptions import UnstableRunWarning
 from .signals import Piecewise, Sinusoids
 
-__all__ = ["SupervisedRun", "supervise", "shift_signal", "lqr_gain"]
+__all__ = ["SupervisedRun", "Supervisor", "Prepared", "LAWS", "supervise", "band_filter",
+           "shift_signal", "lqr_gain"]
 
 
 @dataclass(frozen=True)
@@ -47,10 +67,13 @@ class SupervisedRun:
 
     Parameters
     ----------
-    horizon, dt : float
-        The grid ``0, dt, …, horizon`` (s).
+    horizon : float
+        Run length (s).
+    dt : float or None
+        The step of a run by :func:`fdsc.simulate_stream` (energies by Simpson's rule on each
+        piece between switches), or None for an exact run (energies integrated exactly).
     energy, input_energy : float
-        ``∫ zᵀz`` and ``∫ d²`` over the horizon (Simpson's rule on each piece between switches).
+        ``∫ zᵀz`` and ``∫ d²`` over the horizon.
     switch_times : (m,) ndarray
         Instants (s) at which the active candidate changes.
     sequence : (m + 1,) int ndarray
@@ -62,7 +85,9 @@ class SupervisedRun:
     t_mu : (M,) ndarray
         The decision points (s).
     mu : (M, I) ndarray
-        The monitoring signals the law read there.
+        The monitoring signals the law read there (no rows for a run along a given sequence).
+    diverged_at : float or None
+        The first switch or end point (s) where the divergence monitor fired, else None.
     """
 
     horizon: float
@@ -75,6 +100,7 @@ class SupervisedRun:
     x_final: np.ndarray
     t_mu: np.ndarray
     mu: np.ndarray
+    diverged_at: float | None = None
 
     @property
     def switches(self) -> int:
@@ -111,45 +137,6 @@ def shift_signal(d, tau: float):
     if isinstance(d, Piecewise):
         return Piecewise(np.asarray(d.breaks) - tau, list(d.parts))
     raise TypeError(f"d must be an fdsc.Sinusoids or fdsc.Piecewise, but found {type(d).__name__}")
-
-
-def _bank(modes, d, n_blocks, block, dt, decay, starts):
-    """μ of every candidate at the decision points 0, block, 2 block, … (in steps of dt) for
-    copies restarted from rest at the decision points ``starts`` (indices)."""
-    from .stream import simulate_stream
-
-    mu = np.zeros((n_blocks + 1, len(modes)))
-    for a, b in zip(starts, [*starts[1:], n_blocks], strict=True):
-        if b <= a:
-            continue
-        d_seg = shift_signal(d, a * block * dt)
-        for i, m in enumerate(modes):
-            r = simulate_stream(m, d_seg, (b - a) * block * dt, dt, cumulative_every=block * dt)
-            cum = r.energy_cum                               # ∫₀ᵗ ‖z‖² at the decision points
-            if cum.size == b - a:                            # the grid stops before the end
-                cum = np.append(cum, r.energy)
-            blocks = np.diff(cum)                            # energy of each decision interval
-            acc = np.zeros(b - a + 1)
-            for k, e in enumerate(blocks, start=1):          # μ_k = e^{−λΔ} μ_{k−1} + E_k
-                acc[k] = decay * acc[k - 1] + e
-            mu[a:b + 1, i] = acc
-    return mu
-
-
-def _monitor(modes, d, n_blocks, block, dt, lam, restart_blocks):
-    """μ of every candidate at every decision point: two banks of copies restarted from rest
-    every ``restart_blocks`` decision intervals, half a period apart (both from 0 at first); at
-    each point the bank whose copies are older."""
-    decay = math.exp(-lam * block * dt)
-    half = max(1, restart_blocks // 2)
-    starts0 = list(range(0, n_blocks, restart_blocks))
-    starts1 = [0, *range(half, n_blocks, restart_blocks)]
-    k = np.arange(n_blocks + 1)
-    age0 = k - np.array(starts0)[np.searchsorted(starts0, k, side="right") - 1]
-    age1 = k - np.array(starts1)[np.searchsorted(starts1, k, side="right") - 1]
-    mu0 = _bank(modes, d, n_blocks, block, dt, decay, starts0)
-    mu1 = _bank(modes, d, n_blocks, block, dt, decay, starts1)
-    return np.where((age0 >= age1)[:, None], mu0, mu1)
 
 
 def lqr_gain(plant) -> np.ndarray:
@@ -207,51 +194,445 @@ def _augmented(plant, gains, K0, m):
     return LTISystem(Aa, np.tile(B1, (nm + 1, 1)), Ca, D1)
 
 
-def supervise(plant, gains, d, horizon: float, dt: float, *, forgetting: float = 0.5,
-              hysteresis: float = 0.2, restart: float = 20.0, decide_every: float = 0.1,
-              warmup: float = 0.0, K0=None, x0=None, sigma0: int = 0) -> SupervisedRun:
-    """Run the predictive-cost supervisor on the disturbance estimate (module docstring).
+def band_filter(band):
+    """The monitoring filter of a band for the band-power law: a second-order Butterworth
+    low-pass at ϖ_l (LF band), high-pass at ϖ_h (HF), their cascade (MF), or the identity (EF);
+    unit gain in the pass band.
+
+    Parameters
+    ----------
+    band : Band
+
+    Returns
+    -------
+    LTISystem
+        Input ŵ, output the filtered ŵ.
+
+    Examples
+    --------
+    >>> from fdsc import Band, freqresp
+    >>> f = band_filter(Band.hf(10.0))
+    >>> g = np.abs(freqresp(f, [1.0, 10.0, 1000.0])[:, 0, 0])
+    >>> [round(float(v), 4) for v in g]                 # −3 dB at the edge
+    [0.01, 0.7071, 1.0]
+    """
+    from .bands import Band
+    from .plant import LTISystem
+
+    check_type("band", band, Band, "an fdsc.Band")
+
+    def section(w, high):
+        A = np.array([[0.0, 1.0], [-w * w, -math.sqrt(2.0) * w]])
+        B = np.array([[0.0], [1.0]])
+        if high:                        # s² / (s² + √2 ω s + ω²) = 1 − (√2 ω s + ω²) / (…)
+            return A, B, np.array([[-w * w, -math.sqrt(2.0) * w]]), np.array([[1.0]])
+        return A, B, np.array([[w * w, 0.0]]), np.array([[0.0]])
+
+    parts = []
+    if band.lower > 0:
+        parts.append(section(band.lower, True))
+    if math.isfinite(band.upper):
+        parts.append(section(band.upper, False))
+    if not parts:
+        return LTISystem(np.array([[-1.0]]), np.zeros((1, 1)), np.zeros((1, 1)), np.array([[1.0]]))
+    A, B, C, D = parts[0]
+    for A2, B2, C2, D2 in parts[1:]:                # the second driven by the first's output
+        A = np.block([[A, np.zeros((A.shape[0], A2.shape[0]))], [B2 @ C, A2]])
+        B = np.vstack([B, B2 @ D])
+        C = np.hstack([D2 @ C, C2])
+        D = D2 @ D
+    return LTISystem(A, B, C, D)
+
+
+LAWS = ("cost", "band_power")
+
+
+class Supervisor:
+    """A switching law that decides on the disturbance estimate ŵ (module docstring).
 
     Parameters
     ----------
     plant : Plant
-        The open-loop plant (one disturbance input, ``B1`` of full column rank, so that the
-        estimate ŵ = B1⁺(ẋ − A x − B2 u) of the nominal plant is d).
+        The open-loop plant (one disturbance input, ``B1`` nonzero, so that the estimate
+        ŵ = B1⁺(ẋ − A x − B2 u) of the nominal plant is d).
     gains : sequence of (m_u, n) array_like
         The candidate state-feedback gains (two or more), each stabilizing.
+    law : {"cost", "band_power"}, optional
+        ``"cost"`` (default): the predictive-cost supervisor; monitor i is a copy of closed loop
+        i driven by ŵ, μ_i its fading output energy, and the law picks the least μ.
+        ``"band_power"``: monitor i is :func:`band_filter` of ``bands[i]`` driven by ŵ (the
+        fading FD-EEF of ŵ in that band), and the law picks the largest μ, i.e. the gain meant
+        for the band that holds most of ŵ's recent power.
+    bands : sequence of Band, optional
+        One band per gain (``law="band_power"`` only).
+    decide_every : float, optional
+        Δ (s): the law decides at ``0, Δ, 2Δ, …``; the monitoring signals are updated there,
+        ``μ_k = e^{−λΔ} μ_{k−1} + ∫ over the interval of ‖z_i‖²``.
+    restart : float, optional
+        Period (s, at least 2Δ) of the monitors' restarts: two banks restarted from rest half
+        a period apart; the law reads the bank whose copies are older, so it forgets ŵ older
+        than ``restart`` and never reads copies younger than ``restart / 2`` (after the first
+        ``restart / 2`` seconds).
+    K0 : (m_u, n) array_like, optional
+        None (default): the active gain acts directly, ``u = K_σ x``. Given (a gentle
+        stabilizing gain, e.g. :func:`lqr_gain`): ``u = K0 x + (K_σ − K0) x̂_σ`` with x̂_i a
+        copy of loop i driven by ŵ from x0 (Hespanha and Morse, Automatica 2002); the error
+        x − x̂_σ decays under A + B2 K0 whatever σ does, so a switch moves u only by what the
+        copies' states differ.
+
+    Raises
+    ------
+    TypeError
+        If ``plant`` is not a plant, ``gains`` is one gain, or a band is not a Band.
+    ValueError
+        If fewer than two gains are given, a gain has the wrong shape or does not stabilize,
+        the plant has more than one disturbance input or ``B1 = 0``, ``law`` is unknown,
+        ``bands`` is missing or has the wrong length for the band-power law (or is given for
+        the cost law), or a parameter is out of range.
+    """
+
+    def __init__(self, plant, gains, *, law: str = "cost", bands=None, decide_every: float = 0.1,
+                 restart: float = 20.0, K0=None):
+        from ._validation import as_choice, as_matrix
+        from .plant import as_plant
+
+        plant = as_plant(plant)
+        n, mu_ = plant.n_states, plant.n_controls
+        if plant.B1.shape[1] != 1:
+            raise ValueError("plant must have one disturbance input (B1 of shape (n, 1)), found "
+                             f"{plant.B1.shape}")
+        if not np.any(plant.B1):
+            raise ValueError("plant: B1 is zero, so the disturbance cannot be estimated from "
+                             "ẋ − A x − B2 u")
+        if isinstance(gains, np.ndarray) and gains.ndim == 2 or not hasattr(gains, "__len__"):
+            raise TypeError("gains must be a sequence of gains (each (m_u, n)), not one gain")
+        if len(gains) < 2:
+            raise ValueError(f"gains must hold at least two candidate gains, but found {len(gains)}")
+        gains = [np.array(as_matrix(f"gains[{k}]", K, (mu_, n))) for k, K in enumerate(gains)]
+        loops = []
+        for k, K in enumerate(gains):
+            loop = plant.closed_loop(K)
+            worst = float(np.max(np.linalg.eigvals(loop.A).real))
+            if worst >= 0:
+                raise ValueError(f"gains[{k}] must stabilize the plant, but its closed loop has an "
+                                 f"eigenvalue with real part {worst:.4g}")
+            loops.append(loop)
+        self.law = as_choice("law", law, LAWS)
+        if self.law == "band_power":
+            if bands is None or not hasattr(bands, "__len__") or len(bands) != len(gains):
+                raise ValueError(f"bands must give one Band per gain ({len(gains)}) for the "
+                                 f"band-power law, but found {bands!r}")
+            self.monitors = [band_filter(b) for b in bands]
+        elif bands is not None:
+            raise ValueError("bands is used by the band-power law only (law='band_power')")
+        else:
+            self.monitors = loops
+        self.bands = None if bands is None else tuple(bands)
+        self.decide_every = as_positive("decide_every", decide_every)
+        self.restart = as_positive("restart", restart)
+        self.restart_blocks = round(self.restart / self.decide_every)
+        if self.restart_blocks < 2:
+            raise ValueError(f"restart must be at least two decision intervals "
+                             f"({2 * self.decide_every:g} s), but found {restart!r}")
+        if K0 is not None:
+            K0 = np.array(as_matrix("K0", K0, (mu_, n)))
+            worst = float(np.max(np.linalg.eigvals(plant.A + plant.B2 @ K0).real))
+            if worst >= 0:
+                raise ValueError(f"K0 must stabilize the plant, but A + B2 K0 has an eigenvalue "
+                                 f"with real part {worst:.4g}")
+        self.plant, self.gains, self.loops, self.K0 = plant, gains, loops, K0
+
+    @property
+    def realization(self) -> str:
+        """``"direct"`` (u = K_σ x) or ``"copies"`` (u = K0 x + (K_σ − K0) x̂_σ)."""
+        return "direct" if self.K0 is None else "copies"
+
+    def switched_loops(self) -> list:
+        """The loop with each candidate active: the closed loops (direct), or the plant with
+        every copy, ``[x; x̂_0; …]`` (copies)."""
+        if self.K0 is None:
+            return list(self.loops)
+        return [_augmented(self.plant, self.gains, self.K0, m) for m in range(len(self.gains))]
+
+    def prepare(self, d, horizon: float, *, x0=None) -> Prepared:
+        """The monitors' interval energies and the loops' step tables for one disturbance, from
+        which :meth:`Prepared.run` evaluates the law for any forgetting and hysteresis.
+
+        Parameters
+        ----------
+        d : Sinusoids or Piecewise
+            The disturbance (scalar).
+        horizon : float
+            Run length (s), a whole number of decision intervals.
+        x0 : (n,) array_like, optional
+            Initial state of the plant (default 0); the monitors start from rest.
+
+        Returns
+        -------
+        Prepared
+        """
+        return Prepared(self, d, horizon, x0)
+
+    def run(self, d, horizon: float, *, x0=None, **law) -> SupervisedRun:
+        """``self.prepare(d, horizon, x0=x0).run(**law)``: one run of the law."""
+        return self.prepare(d, horizon, x0=x0).run(**law)
+
+
+@njit(cache=True)
+def _fading(E, fresh, decay):
+    """μ_k = 0 where the bank restarts, else e^{−λΔ} μ_{k−1} + E_{k−1}."""
+    mu = np.zeros((E.shape[0] + 1, E.shape[1]))
+    for k in range(1, E.shape[0] + 1):
+        if not fresh[k]:
+            for i in range(E.shape[1]):
+                mu[k, i] = decay * mu[k - 1, i] + E[k - 1, i]
+    return mu
+
+
+@njit(cache=True)
+def _decide(cost, n_blocks, q, first, dwell, h):
+    """From q to the cheapest p when (1 + h) c_p < c_q (strict), not before ``first`` nor within
+    ``dwell`` intervals of the last switch."""
+    sigma = np.empty(n_blocks, dtype=np.int64)
+    last = -dwell
+    for k in range(n_blocks):
+        if k >= first and k - last >= dwell:
+            p = int(np.argmin(cost[k]))
+            if p != q and (1.0 + h) * cost[k, p] < cost[k, q]:
+                q = p
+                last = k
+        sigma[k] = q
+    return sigma
+
+
+def _dummy_input():
+    """A system whose output is its input: its energy is ∫d²."""
+    return (np.array([[-1.0]]), np.zeros((1, 1)), np.zeros((1, 1)), np.array([[1.0]]))
+
+
+def _abcd(sys):
+    return (sys.A, sys.B, sys.C, sys.D)
+
+
+class Prepared:
+    """A :class:`Supervisor` prepared for one disturbance (see :meth:`Supervisor.prepare`).
+
+    Everything here is exact (:mod:`fdsc._blocks`): the monitors' energies over each decision
+    interval and every run's energy are integrals of the exact solution, not quadratures, so the
+    law's decisions do not depend on any simulation step.
+    """
+
+    def __init__(self, sup: Supervisor, d, horizon, x0):
+        from ._blocks import Grid
+
+        check_type("d", d, Sinusoids | Piecewise, "an fdsc.Sinusoids or fdsc.Piecewise")
+        horizon = as_positive("horizon", horizon)
+        nb = round(horizon / sup.decide_every)
+        if nb < 1 or abs(nb * sup.decide_every - horizon) > 1e-9 * horizon:
+            raise ValueError(f"horizon must be a whole number of decision intervals (decide_every = "
+                             f"{sup.decide_every:g} s), but found {horizon!r}")
+        n = sup.plant.n_states
+        self.sup, self.d, self.horizon, self.n_blocks = sup, d, float(horizon), nb
+        self.x0 = np.zeros(n) if x0 is None else np.array(as_vector("x0", x0, n))
+        self.points = np.arange(nb + 1) * sup.decide_every
+        self.points[-1] = horizon
+        g = self.grid = Grid(d, self.points)
+        # the monitors' energies per decision interval, for each bank of restarts
+        R, half = sup.restart_blocks, max(1, sup.restart_blocks // 2)
+        self.starts = (np.arange(0, nb, R), np.r_[0, np.arange(half, nb, R)])
+        self.E = np.zeros((2, nb, len(sup.monitors)))
+        if sup.law == "cost":                    # the monitors are the closed loops: one table
+            shared = g.tables([_abcd(m) for m in sup.monitors])
+            tables = [(shared, i) for i in range(len(sup.monitors))]
+        else:
+            tables = [(g.tables([_abcd(m)]), 0) for m in sup.monitors]
+        for b, st in enumerate(self.starts):
+            at = np.zeros(nb + 1, dtype=bool)
+            at[st] = True
+            restart = at[g.block] & np.r_[True, g.block[1:] != g.block[:-1]]
+            for i, (m, (tab, j)) in enumerate(zip(sup.monitors, tables, strict=True)):
+                e, _big, _x = g.run(tab, j, restart, np.zeros(m.A.shape[0]))
+                self.E[b, :, i] = g.per_block(e)
+        self.input_energy = float(g.run(g.tables([_dummy_input()]), 0, False, np.zeros(1))[0].sum())
+        self.loops = sup.switched_loops()
+        if sup.law == "cost" and sup.K0 is None:
+            self.tables = shared
+        else:
+            self.tables = g.tables([_abcd(lp) for lp in self.loops])
+        self.xstart = self.x0 if sup.K0 is None else np.tile(self.x0, len(sup.gains) + 1)
+
+    def with_K0(self, K0) -> Prepared:
+        """The same disturbance and monitors with the other realization: ``K0`` None (direct) or
+        a gain (through copies); only the switched loops' tables are recomputed."""
+        sup = Supervisor.__new__(Supervisor)
+        sup.__dict__.update(self.sup.__dict__)
+        other = Supervisor(self.sup.plant, self.sup.gains, K0=K0)
+        sup.K0 = other.K0
+        new = Prepared.__new__(Prepared)
+        new.__dict__.update(self.__dict__)
+        new.sup = sup
+        new.loops = sup.switched_loops()
+        new.tables = self.grid.tables([_abcd(lp) for lp in new.loops])
+        new.xstart = new.x0 if sup.K0 is None else np.tile(new.x0, len(sup.gains) + 1)
+        return new
+
+    def mu(self, forgetting: float) -> np.ndarray:
+        """The monitoring signals the law reads at the decision points, ``(n_blocks + 1, I)``:
+        at each point the bank whose monitors are older (μ = 0 where it has just restarted)."""
+        lam = as_positive("forgetting", forgetting)
+        decay = math.exp(-lam * self.sup.decide_every)
+        nb = self.n_blocks
+        out, ages = [], []
+        k = np.arange(nb + 1)
+        for b, st in enumerate(self.starts):
+            fresh = np.zeros(nb + 1, dtype=np.bool_)
+            fresh[st] = True
+            out.append(_fading(self.E[b], fresh, decay))
+            ages.append(k - st[np.searchsorted(st, k, side="right") - 1])
+        return np.where((ages[0] >= ages[1])[:, None], out[0], out[1])
+
+    def decide(self, mu, *, hysteresis: float = 0.2, warmup: float = 0.0, min_dwell: float = 0.0,
+               sigma0: int = 0) -> np.ndarray:
+        """The candidate active on each decision interval, ``(n_blocks,)``, from the monitoring
+        signals ``mu`` (see :meth:`run` for the parameters)."""
+        h = as_nonnegative("hysteresis", hysteresis)
+        nm = len(self.sup.gains)
+        if isinstance(sigma0, bool) or not isinstance(sigma0, int | np.integer) or not 0 <= sigma0 < nm:
+            raise ValueError(f"sigma0 must be a candidate's index in [0, {nm}), but found {sigma0!r}")
+        step = self.sup.decide_every
+        first = max(1, math.ceil(as_nonnegative("warmup", warmup) / step - 1e-9))
+        dwell = math.ceil(as_nonnegative("min_dwell", min_dwell) / step - 1e-9)
+        # the cost law compares μ (least wins); the band-power law compares 1/μ (largest μ wins)
+        with np.errstate(divide="ignore"):
+            cost = mu if self.sup.law == "cost" else 1.0 / mu
+        return _decide(np.ascontiguousarray(cost), self.n_blocks, int(sigma0), first, dwell, h)
+
+    def run_sequence(self, sigma, *, where: str = "supervise") -> SupervisedRun:
+        """The switched loop run exactly along ``sigma`` (one candidate per decision interval)."""
+        g = self.grid
+        sigma = np.asarray(sigma, dtype=np.int64)
+        if sigma.shape != (self.n_blocks,) or sigma.min() < 0 or sigma.max() >= len(self.loops):
+            raise ValueError(f"sigma must hold one candidate index in [0, {len(self.loops)}) per "
+                             f"decision interval ({self.n_blocks}), but found shape {sigma.shape}")
+        e, big, x = g.run(self.tables, sigma[g.block], False, self.xstart)
+        change = np.flatnonzero(np.diff(sigma)) + 1
+        # the divergence monitor's rule (fdsc._divergence) at the switches and at the end
+        limit = _divergence.threshold([lp.A for lp in self.loops], self.loops[0].B, self.xstart, self.d)
+        ends = np.r_[np.searchsorted(g.block, change) - 1, e.size - 1]
+        ends = ends[ends >= 0]
+        over = np.flatnonzero(big[ends] > limit)
+        diverged = None
+        if over.size or not np.all(np.isfinite(e)):
+            s = int(ends[over[0]]) if over.size else int(np.flatnonzero(~np.isfinite(e))[0])
+            diverged = float(g.edges[s + 1])
+            bound = limit / _divergence.SAFETY
+            warnings.warn(_divergence.message(f"{where}: ", diverged, float(big[s]) / bound, bound),
+                          UnstableRunWarning, stacklevel=3)
+        seq = np.r_[sigma[:1], sigma[change]]
+        share = np.bincount(sigma, minlength=len(self.loops)) / sigma.size
+        return SupervisedRun(self.horizon, None, float(e.sum()), self.input_energy,
+                             change * self.sup.decide_every, seq, share,
+                             x[:self.sup.plant.n_states], self.points, np.zeros((0, len(self.loops))),
+                             diverged)
+
+    def run(self, *, forgetting: float = 0.5, hysteresis: float = 0.2, warmup: float = 0.0,
+            min_dwell: float = 0.0, sigma0: int = 0) -> SupervisedRun:
+        """Run the law.
+
+        Parameters
+        ----------
+        forgetting : float, optional
+            λ > 0 (1/s), the monitoring signals' rate of forgetting.
+        hysteresis : float, optional
+            h ≥ 0: switch from q to p when ``(1 + h) μ_p < μ_q`` (cost law) or
+            ``μ_p > (1 + h) μ_q`` (band-power law); strict, so equal signals (monitors at rest)
+            keep the active candidate. Relative, so the law does not depend on ŵ's scale.
+        warmup : float, optional
+            No decision before this time (s; ``sigma0`` is active until then).
+        min_dwell : float, optional
+            No switch within this time (s) of the previous one: the dwell time a certificate
+            (:func:`fdsc.geromel_colaneri_dwell`) asks of the direct realization.
+        sigma0 : int, optional
+            The candidate active at t = 0.
+
+        Returns
+        -------
+        SupervisedRun
+        """
+        mu = self.mu(forgetting)
+        sigma = self.decide(mu, hysteresis=hysteresis, warmup=warmup, min_dwell=min_dwell, sigma0=sigma0)
+        r = self.run_sequence(sigma)
+        return SupervisedRun(r.horizon, r.dt, r.energy, r.input_energy, r.switch_times, r.sequence,
+                             r.time_share, r.x_final, self.points, mu, r.diverged_at)
+
+    def fixed(self, i: int) -> float:
+        """∫zᵀz of candidate ``i`` held throughout, from x0 (by the same exact engine)."""
+        return self.run_sequence(np.full(self.n_blocks, int(i))).energy
+
+    def energy_of(self, loop) -> float:
+        """∫zᵀz of any other loop ``loop`` (an LTISystem of the plant's state size, e.g. a fixed
+        gain that is not a candidate) from x0, by the same exact engine."""
+        g = self.grid
+        return float(g.run(g.tables([_abcd(loop)]), 0, False, self.x0)[0].sum())
+
+    def piece_steps(self) -> list:
+        """``(first step, end step)`` of every piece of d (zero stretches included)."""
+        g = self.grid
+        cut = np.r_[0, np.flatnonzero(np.diff(g.piece)) + 1, g.piece.size]
+        return list(zip(cut[:-1], cut[1:], strict=True))
+
+    def segment_law(self, choice) -> float:
+        """∫zᵀz of the law that holds candidate ``choice[j]`` on the j-th piece of d (the
+        pieces of :meth:`piece_steps`), the state carried over."""
+        g, x, total = self.grid, self.xstart.copy(), 0.0
+        spans = self.piece_steps()
+        if len(choice) != len(spans):
+            raise ValueError(f"choice must name one candidate per piece ({len(spans)}), but found "
+                             f"{len(choice)}")
+        for (a, b), c in zip(spans, choice, strict=True):
+            e, _big, x = g.run(self.tables, int(c), False, x, a, b)
+            total += float(e.sum())
+        return total
+
+    def clairvoyant(self) -> tuple:
+        """The clairvoyant per-segment oracle: on each piece of d the candidate with the least
+        energy on that piece from the carried-over state. Returns ``(energy, choice)``."""
+        g, x, total, choice = self.grid, self.xstart.copy(), 0.0, []
+        for a, b in self.piece_steps():
+            best = None
+            for i in range(len(self.loops)):
+                e, _big, xi = g.run(self.tables, i, False, x, a, b)
+                if best is None or e.sum() < best[0]:
+                    best = (float(e.sum()), i, xi)
+            total += best[0]
+            choice.append(best[1])
+            x = best[2]
+        return total, choice
+
+
+def supervise(plant, gains, d, horizon: float, dt: float | None = None, *, law: str = "cost",
+              bands=None, forgetting: float = 0.5, hysteresis: float = 0.2, restart: float = 20.0,
+              decide_every: float = 0.1, warmup: float = 0.0, min_dwell: float = 0.0, K0=None,
+              x0=None, sigma0: int = 0) -> SupervisedRun:
+    """Run a switching law that decides on the disturbance estimate (module docstring).
+
+    Parameters
+    ----------
+    plant, gains, law, bands, decide_every, restart, K0
+        The law (:class:`Supervisor`).
     d : Sinusoids or Piecewise
         The disturbance (scalar).
-    horizon, dt : float
-        Run length and step (s); ``horizon`` a multiple of ``dt``.
-    forgetting : float, optional
-        λ > 0 (1/s), the monitoring signals' rate of forgetting.
-    hysteresis : float, optional
-        h ≥ 0: switch from q to p when ``(1 + h) μ_p < μ_q`` (strict, so that equal costs, such
-        as those of copies at rest, keep the active candidate).
-    restart : float, optional
-        Period (s) of the monitoring copies' restarts (at least two decision intervals): the law
-        forgets ŵ older than this, and reads copies that have run at least ``restart / 2``
-        (except in the first ``restart / 2`` seconds).
-    warmup : float, optional
-        No decision before this time (s; ``sigma0`` is active until then). Early on the copies'
-        costs reflect their rise from rest as much as the disturbance, so the first decisions
-        may be revised; waiting costs the time spent with ``sigma0``. Default 0: decide from
-        the first decision point.
-    decide_every : float, optional
-        The law decides every this many seconds (a multiple of ``dt``; ``horizon`` a multiple
-        of it). The monitoring signals are updated there, each decision interval's energy
-        weighed as a whole: ``μ_k = e^{−λΔ} μ_{k−1} + ∫ over the interval of ‖z_i‖²``.
-    K0 : (m_u, n) array_like, optional
-        None (default): the active gain acts directly, ``u = K_σ x``; at a switch to a high gain
-        the state the previous gain left turns into a spike of u. Given (a gentle stabilizing
-        gain, e.g. :func:`lqr_gain`): ``u = K0 x + (K_σ − K0) x̂_σ`` with x̂_i the state of a copy of
-        loop i driven by ŵ from x0 (Hespanha and Morse, Automatica 2002); the error x − x̂_σ
-        decays under A + B2 K0 whatever σ does, so a switch moves u only by what the copies'
-        states differ.
+    horizon : float
+        Run length (s), a whole number of decision intervals.
+    dt : float, optional
+        None (default): the switched run is integrated exactly (:mod:`fdsc._blocks`). Given:
+        it is run by :func:`fdsc.simulate_stream` at this step, piece by piece between switches
+        (energies by Simpson's rule on the grid, like every fixed-gain run of the simulator);
+        ``decide_every`` must be a multiple of ``dt``. The decisions are the same either way.
+    forgetting, hysteresis, warmup, min_dwell, sigma0
+        See :meth:`Prepared.run`.
     x0 : (n,) array_like, optional
-        Initial state of the plant (default 0); the monitoring copies start from rest.
-    sigma0 : int, optional
-        The candidate active at t = 0.
+        Initial state of the plant (default 0); the monitors start from rest.
 
     Returns
     -------
@@ -259,15 +640,12 @@ def supervise(plant, gains, d, horizon: float, dt: float, *, forgetting: float =
 
     Raises
     ------
-    TypeError
-        If ``plant`` is not a plant or ``d`` is not Sinusoids or Piecewise.
-    ValueError
-        If fewer than two gains are given, a gain has the wrong shape or does not stabilize
-        the plant, ``B1`` is not of full column rank or the disturbance not scalar,
-        ``horizon`` is not a multiple of ``dt``, a parameter is out of range, or ``sigma0`` is
-        not a candidate's index.
+    TypeError, ValueError
+        See :class:`Supervisor`; also if ``d`` is not Sinusoids or Piecewise, ``horizon`` is
+        not a whole number of decision intervals, ``decide_every`` is not a whole number of
+        steps ``dt``, or ``sigma0`` is not a candidate's index.
     UnstableError
-        If a piece of the run overflows.
+        If a piece of a run with ``dt`` overflows.
 
     Warns
     -----
@@ -284,97 +662,55 @@ def supervise(plant, gains, d, horizon: float, dt: float, *, forgetting: float =
     ...               [[1.0, 0.0], [0.0, 0.0]], [[0.0], [0.0]], [[0.0], [0.1]])
     >>> gains = [[[-21.85, -22.27]], [[0.495, -1.473]]]          # LF design, HF design
     >>> d = Piecewise([0.0, 60.0, 200.0], [Sinusoids([1.0], [0.2]), Sinusoids([1.0], [12.0])])
-    >>> run = supervise(plant, gains, d, 120.0, 1e-2, warmup=5.0)
+    >>> run = supervise(plant, gains, d, 120.0, warmup=5.0)
     >>> run.sequence.tolist(), bool(60.0 < run.switch_times[-1] < 70.0)
     ([0, 1], True)
     """
-    from ._validation import as_matrix
-    from .plant import as_plant
-    from .simulate import time_grid
+    sup = Supervisor(plant, gains, law=law, bands=bands, decide_every=decide_every, restart=restart,
+                     K0=K0)
+    prep = sup.prepare(d, horizon, x0=x0)
+    if dt is None:
+        return prep.run(forgetting=forgetting, hysteresis=hysteresis, warmup=warmup,
+                        min_dwell=min_dwell, sigma0=sigma0)
+    dt = as_positive("dt", dt)
+    block = round(sup.decide_every / dt)
+    if block < 1 or abs(block * dt - sup.decide_every) > 1e-9 * sup.decide_every:
+        raise ValueError(f"decide_every must be a whole number of steps of dt = {dt:g} s, but found "
+                         f"{sup.decide_every!r}")
+    mu = prep.mu(forgetting)
+    sigma = prep.decide(mu, hysteresis=hysteresis, warmup=warmup, min_dwell=min_dwell, sigma0=sigma0)
+    return _run_on_grid(prep, sigma, mu, dt)
+
+
+def _run_on_grid(prep, sigma, mu, dt):
+    """The switched run along ``sigma`` (one candidate per decision interval) by
+    :func:`fdsc.simulate_stream` at step dt."""
     from .stream import simulate_stream
 
-    plant = as_plant(plant)
-    n, mu_ = plant.n_states, plant.n_controls
-    if plant.B1.shape[1] != 1:
-        raise ValueError("plant must have one disturbance input (B1 of shape (n, 1)), found "
-                         f"{plant.B1.shape}")
-    if not np.any(plant.B1):
-        raise ValueError("plant: B1 is zero, so the disturbance cannot be estimated from ẋ − A x − B2 u")
-    if isinstance(gains, np.ndarray) and gains.ndim == 2 or not hasattr(gains, "__len__"):
-        raise TypeError("gains must be a sequence of gains (each (m_u, n)), not one gain")
-    if len(gains) < 2:
-        raise ValueError(f"gains must hold at least two candidate gains, but found {len(gains)}")
-    gains = [np.array(as_matrix(f"gains[{k}]", K, (mu_, n))) for k, K in enumerate(gains)]
-    modes = []
-    for k, K in enumerate(gains):
-        loop = plant.closed_loop(K)
-        worst = float(np.max(np.linalg.eigvals(loop.A).real))
-        if worst >= 0:
-            raise ValueError(f"gains[{k}] must stabilize the plant, but its closed loop has an "
-                             f"eigenvalue with real part {worst:.4g}")
-        modes.append(loop)
-    check_type("d", d, Sinusoids | Piecewise, "an fdsc.Sinusoids or fdsc.Piecewise")
-    lam = as_positive("forgetting", forgetting)
-    h = as_nonnegative("hysteresis", hysteresis)
-    t = time_grid(horizon, dt)
-    N = t.size
-    block = round(as_positive("decide_every", decide_every) / dt)
-    if block < 1 or abs(block * dt - decide_every) > 1e-9 * decide_every:
-        raise ValueError(f"decide_every must be a whole number of steps of dt = {dt:g} s, but found "
-                         f"{decide_every!r}")
-    if (N - 1) % block:
-        raise ValueError(f"horizon must be a whole number of decision intervals (decide_every = "
-                         f"{decide_every:g} s), but found {horizon!r}")
-    n_blocks = (N - 1) // block
-    restart_blocks = round(as_positive("restart", restart) / (block * dt))
-    if restart_blocks < 2:
-        raise ValueError(f"restart must be at least two decision intervals ({2 * block * dt:g} s), "
-                         f"but found {restart!r}")
-    x = np.zeros(n) if x0 is None else as_vector("x0", x0, n)
-    if isinstance(sigma0, bool) or not isinstance(sigma0, int | np.integer) or not 0 <= sigma0 < len(modes):
-        raise ValueError(f"sigma0 must be a candidate's index in [0, {len(modes)}), but found {sigma0!r}")
-    if K0 is not None:
-        K0 = np.array(as_matrix("K0", K0, (mu_, n)))
-        worst = float(np.max(np.linalg.eigvals(plant.A + plant.B2 @ K0).real))
-        if worst >= 0:
-            raise ValueError(f"K0 must stabilize the plant, but A + B2 K0 has an eigenvalue with "
-                             f"real part {worst:.4g}")
-        x = np.tile(x, len(gains) + 1)           # the plant and the copies, all from x0
-    mu = _monitor(modes, d, n_blocks, block, dt, lam, restart_blocks)
-    # the law at the decision points: from q to the cheapest p when (1 + h) μ_p < μ_q
-    sigma = np.empty(n_blocks + 1, dtype=np.int64)
-    q = int(sigma0)
-    first = max(1, math.ceil(as_nonnegative("warmup", warmup) / (block * dt) - 1e-9))
-    for k in range(n_blocks + 1):
-        p = int(np.argmin(mu[k]))
-        if k < first:
-            sigma[k] = q
-            continue
-        if p != q and (1.0 + h) * mu[k, p] < mu[k, q]:    # strict: equal costs (at rest) keep q
-            q = p
-        sigma[k] = q
-    sigma = sigma[:-1]                                      # the last point decides nothing
-    change = np.flatnonzero(np.diff(sigma)) + 1            # first interval of each new candidate
-    bounds = [0, *(change * block).tolist(), N - 1]        # in steps of dt
-    seq = [int(sigma[0]), *sigma[change].tolist()]
+    sup = prep.sup
+    change = np.flatnonzero(np.diff(sigma)) + 1
+    switch_times = change * sup.decide_every
+    sequence = np.r_[sigma[:1], sigma[change]]
+    block = round(sup.decide_every / dt)
+    N = prep.n_blocks * block + 1
+    bounds = [0, *(change * block).tolist(), N - 1]
+    x = prep.xstart.copy()
+    limit = _divergence.threshold([lp.A for lp in prep.loops], prep.loops[0].B, x, prep.d)
     energy = input_energy = 0.0
-    loops = {m: modes[m] if K0 is None else _augmented(plant, gains, K0, m) for m in set(seq)}
-    # the divergence monitor's rule (fdsc._divergence) on the state at the switches and the end
-    limit = _divergence.threshold([lp.A for lp in loops.values()], next(iter(loops.values())).B, x, d)
-    for a, b, m in zip(bounds[:-1], bounds[1:], seq, strict=True):
+    diverged = None
+    for a, b, m in zip(bounds[:-1], bounds[1:], sequence, strict=True):
         if b <= a:
             continue
-        r = simulate_stream(loops[m], shift_signal(d, a * dt), (b - a) * dt, dt, x0=x)
+        r = simulate_stream(prep.loops[int(m)], shift_signal(prep.d, a * dt), (b - a) * dt, dt, x0=x)
         energy += r.energy
         input_energy += r.input_energy
         x = r.x_final
         big = float(np.abs(x).max())
-        if big > limit:
+        if big > limit and diverged is None:
             bound = limit / _divergence.SAFETY
+            diverged = b * dt
             warnings.warn(_divergence.message("supervise: ", b * dt, big / bound, bound),
-                          UnstableRunWarning, stacklevel=2)
-            limit = math.inf
-    share = np.bincount(seq, weights=np.diff(bounds), minlength=len(modes)) / (N - 1)
-    return SupervisedRun(float(horizon), float(dt), float(energy), float(input_energy),
-                         change * block * dt, np.array(seq), share, x[:n],
-                         np.arange(n_blocks + 1) * block * dt, mu)
+                          UnstableRunWarning, stacklevel=3)
+    share = np.bincount(sigma, minlength=len(prep.loops)) / sigma.size
+    return SupervisedRun(prep.horizon, float(dt), float(energy), float(input_energy), switch_times,
+                         sequence, share, x[:sup.plant.n_states], prep.points, mu, diverged)

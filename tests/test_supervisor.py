@@ -41,18 +41,19 @@ def test_a_one_band_disturbance_gives_the_fixed_gain_run_after_the_first_decisio
 def test_the_monitoring_signals_are_the_copies_fading_energies():
     # before the first restart of either bank every copy runs from rest at t = 0: μ_i at the
     # decision points is the fading sum of the fixed loop i's energy over each decision
-    # interval, here from the full-trajectory simulator (Simpson's rule on each interval)
-    lam, R, step = 0.5, 20.0, 0.1
+    # interval, here from the full-trajectory simulator (Simpson's rule on each interval, at a
+    # step fine enough that its error, ~(ω h)⁴, is below the tolerance; μ itself is exact)
+    lam, R, step, h = 0.5, 20.0, 0.1, 1e-3
     run = supervise(PLANT, GAINS, SLOW, 9.0, DT, forgetting=lam, restart=R, decide_every=step)
-    t = time_grid(9.0, DT)
-    per = round(step / DT)
+    t = time_grid(9.0, h)
+    per = round(step / h)
     decay = math.exp(-lam * step)
     for i, K in enumerate(GAINS):
         z2 = np.sum(simulate(PLANT.closed_loop(K), SLOW, t).z ** 2, axis=1)
         ref = [0.0]
         for k in range(1, run.t_mu.size):
             block = z2[(k - 1) * per:k * per + 1]
-            e = DT / 3 * (block[0] + block[-1] + 4 * block[1:-1:2].sum() + 2 * block[2:-1:2].sum())
+            e = h / 3 * (block[0] + block[-1] + 4 * block[1:-1:2].sum() + 2 * block[2:-1:2].sum())
             ref.append(decay * ref[-1] + e)
         np.testing.assert_allclose(run.mu[:, i], ref, rtol=1e-8, atol=1e-14)
     np.testing.assert_allclose(run.t_mu, np.arange(91) * step)
@@ -104,7 +105,7 @@ def test_lqr_gain_solves_the_riccati_equation():
     (dict(hysteresis=-0.1), ValueError, "hysteresis"),
     (dict(warmup=-1.0), ValueError, "warmup"),
     (dict(restart=0.15), ValueError, "restart must be at least two decision intervals"),
-    (dict(decide_every=0.015), ValueError, "decide_every must be a whole number of steps"),
+    (dict(decide_every=0.015, horizon=0.9), ValueError, "decide_every must be a whole number of steps"),
     (dict(decide_every=0.3), ValueError, "horizon must be a whole number of decision intervals"),
     (dict(sigma0=2), ValueError, r"sigma0 must be a candidate's index in \[0, 2\)"),
     (dict(sigma0=True), ValueError, "sigma0"),

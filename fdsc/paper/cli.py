@@ -9,6 +9,12 @@ python -m fdsc cold-times [--book DIR] [--out FILE]
                                      results folder each), and write the times to FILE
                                      (default: book/data/cold_times.json, which the book's
                                      environment page shows); takes many minutes
+python -m fdsc disturbance-law [--n N] [--workers W] [--scheduler ADDRESS] [--out FILE]
+                                     the full non-stationary study of the law on the
+                                     disturbance estimate (N draws per example, default 500),
+                                     on W processes or a Dask scheduler, written to FILE
+                                     (default: book/data/disturbance_law_full.json, which the
+                                     book's chapter reads); takes about 2 s per draw per worker
 """
 
 import argparse
@@ -22,7 +28,8 @@ import numpy as np
 
 from .record import JOBS_ENV, reproduction_record
 
-__all__ = ["main", "reproduce", "cold_times_command", "to_jsonable", "RECORD_DIGITS"]
+__all__ = ["main", "reproduce", "cold_times_command", "disturbance_law_command", "to_jsonable",
+           "RECORD_DIGITS"]
 
 
 #: Significant digits of the floats written to the record (far beyond any printed number; the
@@ -156,6 +163,55 @@ def cold_times_command(argv=None):
     return 0
 
 
+def disturbance_law_command(argv=None):
+    """``disturbance-law [--n N] [--workers W] [--scheduler ADDRESS] [--out FILE]``: the full
+    study of :mod:`fdsc.paper.disturbance_law` (:func:`~fdsc.paper.disturbance_law.full_study`).
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments after ``disturbance-law`` (default ``sys.argv[2:]``).
+
+    Returns
+    -------
+    int
+        0.
+    """
+    import argparse
+    from concurrent.futures import ProcessPoolExecutor
+
+    from .disturbance_law import FULL_FILE, N_FULL, full_study
+
+    parser = argparse.ArgumentParser(prog="python -m fdsc disturbance-law",
+                                     description="the full study of the law on the disturbance estimate")
+    parser.add_argument("--n", type=int, default=N_FULL, help="draws per example (half train, half test)")
+    parser.add_argument("--workers", type=int, default=os.cpu_count() or 1, help="processes")
+    parser.add_argument("--scheduler", default=None,
+                        help="address of a Dask scheduler (instead of processes)")
+    parser.add_argument("--out", type=Path, default=FULL_FILE)
+    args = parser.parse_args(sys.argv[2:] if argv is None else argv)
+    if args.n < 2:
+        parser.error(f"--n must be at least 2, but found {args.n}")
+    if args.workers < 1:
+        parser.error(f"--workers must be at least 1, but found {args.workers}")
+    start = time.perf_counter()
+    if args.scheduler:
+        from dask.distributed import Client
+
+        with Client(args.scheduler) as client:
+            result = full_study(args.n, executor=client, out=args.out)
+    else:
+        with ProcessPoolExecutor(args.workers) as pool:
+            result = full_study(args.n, executor=pool, out=args.out)
+    for example in ("aircraft", "generic"):
+        r = result[example]
+        print(f"{example}: median {r['median_ratio_vs_fixed_in_advance']:.3f}x {r['fixed_in_advance']}, "
+              f"p95 {r['p95_ratio_vs_fixed_in_advance']:.3f}, wins {r['win_rate_vs_fixed_in_advance']:.0%} "
+              f"of {r['draws_test']} test draws")
+    print(f"wrote {args.out} in {time.perf_counter() - start:.0f} s")
+    return 0
+
+
 def main(argv=None):
     """Entry point of ``python -m fdsc.paper`` (the same commands as ``python -m fdsc``).
 
@@ -171,7 +227,9 @@ def main(argv=None):
     """
     parser = argparse.ArgumentParser(prog="python -m fdsc.paper", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("command", choices=["reproduce", "cold-times"])
+    parser.add_argument("command", choices=["reproduce", "cold-times", "disturbance-law"])
     parser.add_argument("args", nargs=argparse.REMAINDER)
     args = parser.parse_args(argv)
-    return (reproduce if args.command == "reproduce" else cold_times_command)(args.args)
+    commands = {"reproduce": reproduce, "cold-times": cold_times_command,
+                "disturbance-law": disturbance_law_command}
+    return commands[args.command](args.args)
