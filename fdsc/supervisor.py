@@ -131,11 +131,15 @@ def shift_signal(d, tau: float):
     >>> d = Sinusoids([1.0], [2.0])
     >>> bool(np.isclose(shift_signal(d, 0.5)([1.0])[0], d([1.5])[0], rtol=1e-14))
     True
+    >>> p = Piecewise([0.0, 1.0, 3.0], [d, Sinusoids([1.0], [5.0])])
+    >>> np.allclose(shift_signal(p, 0.5)([0.2, 0.7, 2.0]), p([0.7, 1.2, 2.5]), rtol=1e-14)
+    True
     """
     if isinstance(d, Sinusoids):
         return Sinusoids(d.amplitudes, d.frequencies, d.phases + d.frequencies * tau)
     if isinstance(d, Piecewise):
-        return Piecewise(np.asarray(d.breaks) - tau, list(d.parts))
+        # the parts are evaluated at absolute time: each is shifted too
+        return Piecewise(np.asarray(d.breaks) - tau, [shift_signal(p, tau) for p in d.parts])
     raise TypeError(f"d must be an fdsc.Sinusoids or fdsc.Piecewise, but found {type(d).__name__}")
 
 

@@ -145,3 +145,133 @@ def test_the_divergence_monitor_is_applied_at_the_switches(monkeypatch):
     with pytest.warns(UnstableRunWarning, match=r"supervise: the switched run diverges: at t = ") as rec:
         supervise(PLANT, GAINS, d, 100.0, DT)
     assert len([w for w in rec if issubclass(w.category, UnstableRunWarning)]) == 1
+
+
+# --- the exact engine, the band-power law, the oracles --------------------------------------
+
+from fdsc import Band, Supervisor, band_filter, freqresp, simulate_stream  # noqa: E402
+from fdsc._blocks import Grid  # noqa: E402
+
+TWO = Piecewise([0.0, 40.0, 100.0], [SLOW, Sinusoids([1.0], [12.0])])
+
+
+def test_the_exact_engine_agrees_with_the_simulator_as_its_step_shrinks():
+    # Simpson's error on the simulator's grid falls like h⁴; the engine has none
+    loop = PLANT.closed_loop(GAINS[1])
+    d = Piecewise([1.0, 30.02, 60.0], [SLOW, Sinusoids([1.0, 0.3], [12.0, 3.0], [0.2, 0.1])])
+    g = Grid(d, np.arange(0, 601) * 0.1)
+    e, big, x = g.run(g.tables([(loop.A, loop.B, loop.C, loop.D)]), 0, False, np.zeros(2))
+    errs = []
+    for h in (1e-2, 5e-3):
+        r = simulate_stream(loop, d, 60.0, h)
+        errs.append(abs(r.energy / e.sum() - 1))
+        np.testing.assert_allclose(x, r.x_final, rtol=1e-9, atol=1e-12)
+    assert errs[1] < errs[0] / 8 and errs[1] < 1e-7
+    assert big[-1] == np.abs(x).max() and big.size == e.size == 601      # 600 steps and the break
+
+
+def test_the_exact_engine_handles_a_stiff_loop():
+    # a pole at −10⁶ /s over steps of 0.1 s: the block exponential is scaled and doubled
+    from fdsc import LTISystem
+    loop = LTISystem(np.diag([-1e6, -1.0]), [[1e6], [1.0]], [[1.0, 1.0]], [[0.0]])
+    d = Sinusoids([1.0], [2.0])
+    g = Grid(d, np.arange(0, 101) * 0.1)
+    e, _big, x = g.run(g.tables([(loop.A, loop.B, loop.C, loop.D)]), 0, False, np.zeros(2))
+    assert np.all(np.isfinite(e))
+    r = simulate_stream(loop, d, 10.0, 1e-3)
+    np.testing.assert_allclose(x, r.x_final, rtol=1e-8, atol=1e-12)
+    assert e.sum() == pytest.approx(r.energy, rel=1e-4)       # the simulator misses the 1 µs transient
+
+
+def test_the_decisions_do_not_depend_on_the_step():
+    a = supervise(PLANT, GAINS, TWO, 100.0, 1e-2)
+    b = supervise(PLANT, GAINS, TWO, 100.0, 5e-3)
+    c = supervise(PLANT, GAINS, TWO, 100.0)                  # exact
+    for r in (b, c):
+        np.testing.assert_array_equal(a.switch_times, r.switch_times)
+        np.testing.assert_array_equal(a.sequence, r.sequence)
+    assert a.dt == 1e-2 and c.dt is None
+    assert c.energy == pytest.approx(b.energy, rel=1e-6) and a.energy == pytest.approx(b.energy, rel=1e-5)
+
+
+def test_a_candidate_held_throughout_is_the_fixed_run_bit_for_bit():
+    prep = Supervisor(PLANT, GAINS).prepare(TWO, 100.0, x0=[0.2, 0.0])
+    for i in range(2):
+        held = prep.run_sequence(np.full(prep.n_blocks, i))
+        assert held.energy == prep.fixed(i) and held.switches == 0
+        assert held.energy == prep.energy_of(PLANT.closed_loop(GAINS[i]))
+        # the copies realization without a switch is the same loop: x = x̂_i throughout
+        copies = prep.with_K0(lqr_gain(PLANT)).run_sequence(np.full(prep.n_blocks, i))
+        assert copies.energy == pytest.approx(held.energy, rel=1e-9)
+
+
+def test_segment_laws_and_the_clairvoyant_oracle():
+    prep = Supervisor(PLANT, GAINS).prepare(TWO, 120.0)
+    spans = prep.piece_steps()
+    assert len(spans) == 3                                    # the two pieces and the silent tail
+    fixed = [prep.fixed(i) for i in range(2)]
+    for i in range(2):
+        assert prep.segment_law([i] * 3) == pytest.approx(fixed[i], rel=1e-12)
+    energy, choice = prep.clairvoyant()
+    # on each piece the least energy from the carried state; here LF gain, then HF gain
+    assert choice[:2] == [0, 1]
+    assert energy == pytest.approx(prep.segment_law(choice), rel=1e-12)
+    assert energy < min(fixed)
+    with pytest.raises(ValueError, match="one candidate per piece"):
+        prep.segment_law([0, 1])
+    # one piece: the oracle is the best fixed gain
+    one = Supervisor(PLANT, GAINS).prepare(SLOW, 50.0)
+    assert one.clairvoyant()[0] == min(one.fixed(0), one.fixed(1))
+
+
+def test_the_band_power_law_picks_the_gain_of_the_band_that_holds_the_power():
+    bands = [Band.lf(1.0), Band.hf(5.0)]
+    run = supervise(PLANT, GAINS, TWO, 100.0, law="band_power", bands=bands, warmup=2.0, sigma0=1)
+    assert run.sequence.tolist() == [1, 0, 1]
+    assert run.switch_times[0] == pytest.approx(2.0)          # its first decision
+    assert 40.0 < run.switch_times[1] < 45.0
+    # one band throughout: after the first decision, the fixed-gain run of that band
+    prep = Supervisor(PLANT, GAINS, law="band_power", bands=bands).prepare(SLOW, 60.0)
+    r = prep.run(warmup=2.0, sigma0=1)
+    assert r.sequence.tolist() == [1, 0]
+    sigma = np.r_[np.ones(20, dtype=int), np.zeros(580, dtype=int)]
+    assert r.energy == prep.run_sequence(sigma).energy
+
+
+def test_band_filters_pass_their_band():
+    for band, inside, outside in ((Band.lf(1.0), 0.1, 10.0), (Band.hf(10.0), 100.0, 1.0),
+                                  (Band.mf(1.0, 10.0), 3.0, 100.0)):
+        f = band_filter(band)
+        g = np.abs(freqresp(f, [inside, outside])[:, 0, 0])
+        assert g[0] > 0.95 and g[1] < 0.02
+    assert np.abs(freqresp(band_filter(Band.entire()), [0.1, 100.0])[:, 0, 0]).tolist() == [1.0, 1.0]
+
+
+def test_the_minimum_dwell_is_enforced():
+    d = Piecewise(np.arange(0.0, 101.0, 5.0), [SLOW if k % 2 == 0 else Sinusoids([1.0], [12.0])
+                                               for k in range(20)])
+    free = supervise(PLANT, GAINS, d, 100.0, forgetting=5.0, hysteresis=0.0)
+    held = supervise(PLANT, GAINS, d, 100.0, forgetting=5.0, hysteresis=0.0, min_dwell=12.0)
+    assert np.min(np.diff(free.switch_times)) < 12.0
+    assert np.all(np.diff(held.switch_times) >= 12.0 - 1e-9) and held.switches < free.switches
+
+
+@pytest.mark.parametrize(("kwargs", "error", "match"), [
+    (dict(law="state"), ValueError, "law"),
+    (dict(law="band_power"), ValueError, "bands must give one Band per gain"),
+    (dict(law="band_power", bands=[Band.lf(1.0)]), ValueError, "bands must give one Band per gain"),
+    (dict(bands=[Band.lf(1.0), Band.hf(2.0)]), ValueError, "bands is used by the band-power law only"),
+    (dict(law="band_power", bands=[Band.lf(1.0), "HF"]), TypeError, "band"),
+    (dict(min_dwell=-1.0), ValueError, "min_dwell"),
+])
+def test_bad_law_options_are_refused_by_name(kwargs, error, match):
+    with pytest.raises(error, match=match):
+        supervise(PLANT, GAINS, SLOW, 1.0, **kwargs)
+
+
+def test_a_sequence_of_the_wrong_shape_is_refused():
+    prep = Supervisor(PLANT, GAINS).prepare(SLOW, 1.0)
+    with pytest.raises(ValueError, match="sigma must hold one candidate index"):
+        prep.run_sequence(np.zeros(3, dtype=int))
+    with pytest.raises(ValueError, match="sigma must hold one candidate index"):
+        prep.run_sequence(np.full(10, 2))
