@@ -378,7 +378,21 @@ class Supervisor:
         return Prepared(self, d, horizon, x0)
 
     def run(self, d, horizon: float, *, x0=None, **law) -> SupervisedRun:
-        """``self.prepare(d, horizon, x0=x0).run(**law)``: one run of the law."""
+        """One run of the law: ``self.prepare(d, horizon, x0=x0).run(**law)``.
+
+        Parameters
+        ----------
+        d : Sinusoids or Piecewise
+        horizon : float
+        x0 : (n,) array_like, optional
+        **law
+            ``forgetting``, ``hysteresis``, ``warmup``, ``min_dwell``, ``sigma0``
+            (:meth:`Prepared.run`).
+
+        Returns
+        -------
+        SupervisedRun
+        """
         return self.prepare(d, horizon, x0=x0).run(**law)
 
 
@@ -424,6 +438,22 @@ class Prepared:
     Everything here is exact (:mod:`fdsc._blocks`): the monitors' energies over each decision
     interval and every run's energy are integrals of the exact solution, not quadratures, so the
     law's decisions do not depend on any simulation step.
+
+    Parameters
+    ----------
+    sup : Supervisor
+    d : Sinusoids or Piecewise
+    horizon : float
+        A whole number of decision intervals (s).
+    x0 : (n,) array_like or None
+        Initial state of the plant.
+
+    Raises
+    ------
+    TypeError
+        If ``d`` is not Sinusoids or Piecewise.
+    ValueError
+        If ``horizon`` is not a whole number of decision intervals or ``x0`` has the wrong size.
     """
 
     def __init__(self, sup: Supervisor, d, horizon, x0):
@@ -466,8 +496,18 @@ class Prepared:
         self.xstart = self.x0 if sup.K0 is None else np.tile(self.x0, len(sup.gains) + 1)
 
     def with_K0(self, K0) -> Prepared:
-        """The same disturbance and monitors with the other realization: ``K0`` None (direct) or
-        a gain (through copies); only the switched loops' tables are recomputed."""
+        """The same disturbance and monitors with another realization (only the switched loops'
+        tables are recomputed).
+
+        Parameters
+        ----------
+        K0 : (m_u, n) array_like or None
+            None: direct; a stabilizing gain: through copies.
+
+        Returns
+        -------
+        Prepared
+        """
         sup = Supervisor.__new__(Supervisor)
         sup.__dict__.update(self.sup.__dict__)
         other = Supervisor(self.sup.plant, self.sup.gains, K0=K0)
@@ -481,8 +521,18 @@ class Prepared:
         return new
 
     def mu(self, forgetting: float) -> np.ndarray:
-        """The monitoring signals the law reads at the decision points, ``(n_blocks + 1, I)``:
-        at each point the bank whose monitors are older (μ = 0 where it has just restarted)."""
+        """The monitoring signals the law reads at the decision points: at each point those of
+        the bank whose monitors are older (μ = 0 where it has just restarted).
+
+        Parameters
+        ----------
+        forgetting : float
+            λ > 0 (1/s).
+
+        Returns
+        -------
+        (n_blocks + 1, I) ndarray
+        """
         lam = as_positive("forgetting", forgetting)
         decay = math.exp(-lam * self.sup.decide_every)
         nb = self.n_blocks
@@ -497,8 +547,19 @@ class Prepared:
 
     def decide(self, mu, *, hysteresis: float = 0.2, warmup: float = 0.0, min_dwell: float = 0.0,
                sigma0: int = 0) -> np.ndarray:
-        """The candidate active on each decision interval, ``(n_blocks,)``, from the monitoring
-        signals ``mu`` (see :meth:`run` for the parameters)."""
+        """The candidate active on each decision interval.
+
+        Parameters
+        ----------
+        mu : (n_blocks + 1, I) ndarray
+            The monitoring signals (:meth:`mu`).
+        hysteresis, warmup, min_dwell, sigma0
+            See :meth:`run`.
+
+        Returns
+        -------
+        (n_blocks,) int ndarray
+        """
         h = as_nonnegative("hysteresis", hysteresis)
         nm = len(self.sup.gains)
         if isinstance(sigma0, bool) or not isinstance(sigma0, int | np.integer) or not 0 <= sigma0 < nm:
@@ -512,7 +573,30 @@ class Prepared:
         return _decide(np.ascontiguousarray(cost), self.n_blocks, int(sigma0), first, dwell, h)
 
     def run_sequence(self, sigma, *, where: str = "supervise") -> SupervisedRun:
-        """The switched loop run exactly along ``sigma`` (one candidate per decision interval)."""
+        """The switched loop run exactly along a given sequence.
+
+        Parameters
+        ----------
+        sigma : (n_blocks,) array_like of int
+            One candidate per decision interval.
+        where : str, optional
+            Prefix of the divergence monitor's warning.
+
+        Returns
+        -------
+        SupervisedRun
+            Without monitoring signals.
+
+        Raises
+        ------
+        ValueError
+            If ``sigma`` has the wrong shape or names no candidate.
+
+        Warns
+        -----
+        UnstableRunWarning
+            If the state at a switch or at the end exceeds the divergence monitor's bound.
+        """
         g = self.grid
         sigma = np.asarray(sigma, dtype=np.int64)
         if sigma.shape != (self.n_blocks,) or sigma.min() < 0 or sigma.max() >= len(self.loops):
@@ -570,24 +654,63 @@ class Prepared:
                              r.time_share, r.x_final, self.points, mu, r.diverged_at)
 
     def fixed(self, i: int) -> float:
-        """∫zᵀz of candidate ``i`` held throughout, from x0 (by the same exact engine)."""
+        """∫zᵀz of one candidate held throughout, from x0 (by the same exact engine).
+
+        Parameters
+        ----------
+        i : int
+            The candidate.
+
+        Returns
+        -------
+        float
+        """
         return self.run_sequence(np.full(self.n_blocks, int(i))).energy
 
     def energy_of(self, loop) -> float:
-        """∫zᵀz of any other loop ``loop`` (an LTISystem of the plant's state size, e.g. a fixed
-        gain that is not a candidate) from x0, by the same exact engine."""
+        """∫zᵀz of any other loop from x0, by the same exact engine.
+
+        Parameters
+        ----------
+        loop : LTISystem
+            Of the plant's state size (e.g. the closed loop of a gain that is not a candidate).
+
+        Returns
+        -------
+        float
+        """
         g = self.grid
         return float(g.run(g.tables([_abcd(loop)]), 0, False, self.x0)[0].sum())
 
     def piece_steps(self) -> list:
-        """``(first step, end step)`` of every piece of d (zero stretches included)."""
+        """The steps of every piece of d (zero stretches included).
+
+        Returns
+        -------
+        list of (int, int)
+            ``(first step, end step)`` per piece.
+        """
         g = self.grid
         cut = np.r_[0, np.flatnonzero(np.diff(g.piece)) + 1, g.piece.size]
         return list(zip(cut[:-1], cut[1:], strict=True))
 
     def segment_law(self, choice) -> float:
-        """∫zᵀz of the law that holds candidate ``choice[j]`` on the j-th piece of d (the
-        pieces of :meth:`piece_steps`), the state carried over."""
+        """∫zᵀz of a law that holds one candidate per piece of d, the state carried over.
+
+        Parameters
+        ----------
+        choice : sequence of int
+            The candidate on each piece of :meth:`piece_steps`.
+
+        Returns
+        -------
+        float
+
+        Raises
+        ------
+        ValueError
+            If ``choice`` does not name one candidate per piece.
+        """
         g, x, total = self.grid, self.xstart.copy(), 0.0
         spans = self.piece_steps()
         if len(choice) != len(spans):
@@ -600,7 +723,14 @@ class Prepared:
 
     def clairvoyant(self) -> tuple:
         """The clairvoyant per-segment oracle: on each piece of d the candidate with the least
-        energy on that piece from the carried-over state. Returns ``(energy, choice)``."""
+        energy on that piece from the carried-over state.
+
+        Returns
+        -------
+        energy : float
+        choice : list of int
+            The candidate on each piece.
+        """
         g, x, total, choice = self.grid, self.xstart.copy(), 0.0, []
         for a, b in self.piece_steps():
             best = None

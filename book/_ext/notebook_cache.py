@@ -74,8 +74,10 @@ def source_key(root):
     files = [p for p in package.rglob("*")
              if p.suffix in SOURCE_SUFFIXES and p.is_file() and "__pycache__" not in p.parts]
     files.append(root / "requirements.txt")
-    # data a chapter reads that is not in the package: the measured cold execution times
-    files += [p for p in [root / "book" / "data" / "cold_times.json"] if p.is_file()]
+    # data the chapters read that is not in the package: the measured cold execution times and
+    # the full study of the law on the disturbance estimate
+    files += [p for p in [root / "book" / "data" / "cold_times.json",
+                          root / "book" / "data" / "disturbance_law_full.json"] if p.is_file()]
     h = hashlib.sha256()
     for path in sorted(files, key=lambda p: p.relative_to(root).as_posix()):
         data = path.read_bytes()

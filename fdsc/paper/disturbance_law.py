@@ -22,7 +22,6 @@ process pool or a Dask client, and writes :data:`FULL_FILE`, which the chapter r
 
 from __future__ import annotations
 
-import functools
 import json
 import math
 from dataclasses import dataclass
@@ -32,194 +31,48 @@ import numpy as np
 
 import fdsc
 
-from .._validation import as_choice, as_count
-from .baselines import aircraft_example
+from .._validation import as_count
 from .cache import cached
 from .comparators import comparators
+from .disturbance_law_draws import (
+    DECIDE_EVERY,
+    FRONT_FRACTIONS,
+    FRONT_MAXITER,
+    HYSTERESES,
+    IDEAL_PAIR,
+    LAMBDAS,
+    NOISE_SHARE,
+    NOISE_TONES,
+    RESTART,
+    SEED,
+    Draw,
+    LawRun,
+    _example,
+    candidates,
+    certificate,
+    direct_realization,
+    draw,
+    draw_result,
+    front,
+    law_run,
+    lqr,
+)
 from .examples import beats
-from .generic_example import generic_example
 from .results import RecordPart, entry
 
 __all__ = ["SEED", "N_RECORD", "N_FULL", "LAMBDAS", "HYSTERESES", "DECIDE_EVERY", "RESTART",
-           "NOISE_SHARE", "NOISE_TONES", "HEADROOM_MIN", "FULL_FILE", "Draw", "draw", "front",
-           "candidates", "lqr", "certificate", "draw_result", "Study", "study", "rho_t_family",
-           "record_part", "full_study", "load_full"]
+           "NOISE_SHARE", "NOISE_TONES", "HEADROOM_MIN", "FULL_FILE", "IDEAL_PAIR", "FRONT_FRACTIONS",
+           "FRONT_MAXITER", "Draw", "draw", "front", "candidates", "lqr", "certificate", "draw_result",
+           "Study", "study", "rho_t_family", "record_part", "full_study", "load_full", "LawRun",
+           "law_run", "direct_realization"]
 
-SEED = 32
 #: Draws per example in the record (half train, half test) and in the full study.
-N_RECORD, N_FULL = 16, 500
-#: The tuning grid (on the training half).
-LAMBDAS, HYSTERESES = (0.05, 0.2, 1.0), (0.1, 0.3)
-#: The law's decision interval and restart period (s).
-DECIDE_EVERY, RESTART = 0.1, 20.0
-#: Probability that a segment is band-limited noise, and its tones per band.
-NOISE_SHARE, NOISE_TONES = 0.25, 6
+N_RECORD, N_FULL = 12, 500
 #: Where ``--full`` writes the full study (relative to the repository root).
 FULL_FILE = Path("book") / "data" / "disturbance_law_full.json"
-#: The fixed gains the ideal segment law holds on LF- and HF-dominated pieces.
-IDEAL_PAIR = ("PassC-LF", "PassC-HF")
-#: Bounds on the LF peak of the Pareto front, as fractions of the way (in log) from the LF
-#: design's LF peak to the H∞ design's.
-FRONT_FRACTIONS = (0.0, 0.5, 1.0)
 #: The oracle's least relative gain over the fixed gain chosen in advance for a draw to count
 #: in the median share of the oracle's gain that the law realizes.
 HEADROOM_MIN = 0.01
-#: Nelder–Mead iterations per start of the front's search (the peaks agree with 400 to 4 digits).
-FRONT_MAXITER = 200
-
-
-@functools.cache
-def _example(name):
-    as_choice("example", name, ("aircraft", "generic"))
-    return aircraft_example() if name == "aircraft" else generic_example()
-
-
-@dataclass(frozen=True)
-class Draw:
-    """One non-stationary disturbance (see :func:`draw`).
-
-    Parameters
-    ----------
-    d : fdsc.Piecewise
-    horizon : float
-        Run length (s): the end of the last segment, up to the next decision point.
-    dominant : tuple of str
-        "LF" or "HF" per segment.
-    noise : tuple of bool
-        Whether each segment is band-limited noise.
-    """
-
-    d: fdsc.Piecewise
-    horizon: float
-    dominant: tuple
-    noise: tuple
-
-    @property
-    def changes(self) -> int:
-        """Changes of the dominating band between consecutive segments."""
-        return int(sum(a != b for a, b in zip(self.dominant[:-1], self.dominant[1:], strict=True)))
-
-
-def draw(example, rng: np.random.Generator) -> Draw:
-    """One seeded non-stationary disturbance of the module docstring's distribution.
-
-    Parameters
-    ----------
-    example : Example
-    rng : numpy.random.Generator
-
-    Returns
-    -------
-    Draw
-
-    Examples
-    --------
-    >>> dr = draw(aircraft_example(), np.random.default_rng(0))
-    >>> 6 <= len(dr.dominant) <= 10, [round(p.power(), 12) for p in dr.d.parts][:2]
-    (True, [1.0, 1.0])
-    """
-    k = int(rng.integers(6, 11))
-    lengths = np.round((20.0 + rng.exponential(80.0, k)) * 100.0) / 100.0
-    parts, dom, noise = [], [], []
-    for _ in range(k):
-        lf = bool(rng.random() < 0.5)
-        alpha = rng.uniform(0.8, 1.0)
-        is_noise = bool(rng.random() < NOISE_SHARE)
-        m = NOISE_TONES if is_noise else 3
-        sums = []
-        for (lo, hi), share in ((example.lf_tones, alpha if lf else 1 - alpha),
-                                (example.hf_tones, 1 - alpha if lf else alpha)):
-            w = np.exp(rng.uniform(np.log(lo), np.log(hi), m))
-            a = rng.rayleigh(1.0, m) if is_noise else rng.uniform(0.5, 1.5, m)
-            a = a * np.sqrt(share / (0.5 * np.sum(a**2)))
-            sums.append(fdsc.Sinusoids(a, w, rng.uniform(0.0, 2 * np.pi, m)))
-        parts.append(sums[0] + sums[1])
-        dom.append("LF" if lf else "HF")
-        noise.append(is_noise)
-    breaks = np.round(np.r_[0.0, np.cumsum(lengths)] * 100.0) / 100.0
-    horizon = math.ceil(breaks[-1] / DECIDE_EVERY - 1e-9) * DECIDE_EVERY
-    return Draw(fdsc.Piecewise(breaks, parts), round(horizon, 6), tuple(dom), tuple(noise))
-
-
-@functools.cache
-@cached
-def front(example: str = "aircraft") -> fdsc.ParetoFront:
-    """The multi-band Pareto front of the example: least HF peak with the LF peak at most β, β
-    from the LF design's LF peak to the H∞ design's (:data:`FRONT_FRACTIONS`, in log)."""
-    ex = _example(example)
-    lo = fdsc.band_peak(ex.closed_loop("PassC-LF"), ex.bands["LF"]).gamma
-    hi = fdsc.band_peak(ex.closed_loop("PassC-EF"), ex.bands["LF"]).gamma
-    lo, hi = min(lo, hi) * 1.02, max(lo, hi)
-    betas = [lo * (hi / lo) ** f for f in FRONT_FRACTIONS]
-    return fdsc.pareto_front(ex.plant, ex.bands["HF"], ex.bands["LF"], betas, maxiter=FRONT_MAXITER)
-
-
-def lqr(example: str = "aircraft") -> np.ndarray:
-    """K0 of the realization through copies: the LQR gain of (A, B2, C, D2)."""
-    return fdsc.lqr_gain(_example(example).plant)
-
-
-def candidates(example: str = "aircraft") -> tuple:
-    """The law's candidates: ``(names, gains)`` of the comparator set and the Pareto front's
-    points (``"front 1"`` … in increasing order of the LF bound)."""
-    ex = _example(example)
-    names = list(comparators(example))
-    gains = [ex.gains[n] for n in names]
-    for j, K in enumerate(front(example).gains()):
-        names.append(f"front {j + 1}")
-        gains.append(K)
-    return tuple(names), tuple(gains)
-
-
-@functools.cache
-@cached
-def certificate(example: str = "aircraft"):
-    """The Geromel–Colaneri dwell time of the FDSC pair's closed loops (PassC-LF, PassC-HF):
-    what the direct realization of a law switching between them would have to enforce, or None
-    if none up to 10⁴ s is found."""
-    ex = _example(example)
-    loops = [ex.closed_loop(n) for n in IDEAL_PAIR]
-    try:
-        return fdsc.geromel_colaneri_dwell(loops, tau_max=1e4)
-    except fdsc.SolverError:
-        return None
-
-
-def _configs(example):
-    """The tuning grid: (law, realization, λ, h). Every law is realized through copies (with
-    K0 the LQR gain), which is stable for any switching on the decision grid; the direct
-    realization turns a switch to a high gain into a spike of u (the chapter shows one)."""
-    return [(law, "copies", lam, h) for law in ("cost", "band_power") for lam in LAMBDAS
-            for h in HYSTERESES]
-
-
-def draw_result(example: str, index: int, seed: int = SEED) -> dict:
-    """Every controller on draw ``index`` of the seeded sequence (a plain dict, picklable)."""
-    ex = _example(example)
-    dr = draw(ex, np.random.default_rng([seed, index]))
-    names, gains = candidates(example)
-    K0 = lqr(example)
-    sup = fdsc.Supervisor(ex.plant, gains, decide_every=DECIDE_EVERY, restart=RESTART)
-    prep = sup.prepare(dr.d, dr.horizon)
-    fixed = {n: prep.fixed(i) for i, n in enumerate(names)}
-    oracle, _choice = prep.clairvoyant()
-    lf, hf = names.index(IDEAL_PAIR[0]), names.index(IDEAL_PAIR[1])
-    dom = {}
-    for (t0, _t1, *_r), k in zip(prep.grid.pieces, range(len(prep.grid.pieces)), strict=True):
-        j = int(np.searchsorted(dr.d.breaks, t0 + 1e-9, side="right") - 1)
-        dom[k] = dr.dominant[j] if 0 <= j < len(dr.dominant) else "LF"
-    ideal = prep.segment_law([lf if dom[k] == "LF" else hf for k in range(len(prep.grid.pieces))])
-    pair = fdsc.Supervisor(ex.plant, [gains[lf], gains[hf]], law="band_power",
-                           bands=[ex.bands["LF"], ex.bands["HF"]], decide_every=DECIDE_EVERY,
-                           restart=RESTART).prepare(dr.d, dr.horizon)
-    preps = {("cost", "copies"): prep.with_K0(K0), ("band_power", "copies"): pair.with_K0(K0)}
-    runs = {}
-    for law, real, lam, h in _configs(example):
-        r = preps[(law, real)].run(forgetting=lam, hysteresis=h)
-        runs[f"{law}/{real}/{lam:g}/{h:g}"] = (r.energy, r.switches, r.diverged_at is not None)
-    return {"index": index, "horizon": dr.horizon, "changes": dr.changes, "segments": len(dr.dominant),
-            "fixed": fixed, "oracle": oracle, "ideal": ideal, "runs": runs,
-            "input_energy": prep.input_energy}
 
 
 @dataclass(frozen=True)
@@ -258,17 +111,41 @@ class Study:
         return np.array([f(r) for r in (self.test if draws is None else draws)])
 
     def ratio_vs_fixed_in_advance(self, law=None, draws=None) -> np.ndarray:
+        """The law's energy over the fixed gain chosen in advance's, per draw.
+
+        Parameters
+        ----------
+        law : str, optional
+            A setting ``law/realization/λ/h`` (default the chosen one).
+        draws : sequence of dict, optional
+            Default the test half.
+
+        Returns
+        -------
+        ndarray
+        """
         law = self.law if law is None else law
         return self._arr(lambda r: r["runs"][law][0] / r["fixed"][self.fixed_in_advance], draws)
 
     def best_of(self, law: str) -> str:
-        """The setting of ``law`` ("cost" or "band_power") of least mean log ratio to the fixed
-        gain chosen in advance on the training half."""
+        """The setting of a law of least mean log ratio to the fixed gain chosen in advance on
+        the training half.
+
+        Parameters
+        ----------
+        law : {"cost", "band_power"}
+
+        Returns
+        -------
+        str
+            ``law/realization/λ/h``.
+        """
         train = self.draws[:len(self.draws) // 2]
         keys = [k for k in train[0]["runs"] if k.startswith(law + "/")]
         return min(keys, key=lambda k: np.mean(np.log(self.ratio_vs_fixed_in_advance(k, train))))
 
     def ratio_vs_best_fixed(self) -> np.ndarray:
+        """The law's energy over the least energy of the fixed candidates, per test draw."""
         return self._arr(lambda r: r["runs"][self.law][0] / min(r["fixed"].values()))
 
     def oracle_share(self) -> np.ndarray:
@@ -289,17 +166,21 @@ class Study:
         return self._arr(lambda r: r["oracle"] / r["fixed"][self.fixed_in_advance])
 
     def ideal_ratio(self) -> np.ndarray:
+        """The ideal segment law's energy over the fixed gain chosen in advance's, per test draw."""
         return self._arr(lambda r: r["ideal"] / r["fixed"][self.fixed_in_advance])
 
     def switches_per_change(self) -> float:
+        """The law's switches over the changes of the dominating band, summed over the test draws."""
         sw = sum(r["runs"][self.law][1] for r in self.test)
         ch = sum(r["changes"] for r in self.test)
         return float(sw / ch) if ch else float("nan")
 
     def diverged(self) -> int:
+        """Test draws on which the divergence monitor fired."""
         return int(sum(r["runs"][self.law][2] for r in self.test))
 
     def summary(self) -> dict:
+        """The record's fields (entry ``supervisor``, one example) on the test draws."""
         q = self.ratio_vs_fixed_in_advance()
         law, real, lam, h = self.law.split("/")
         return {
@@ -346,15 +227,40 @@ def _map(fn, args, executor):
 
 @cached
 def study(example: str = "aircraft", n: int = N_RECORD, seed: int = SEED) -> Study:
-    """The seeded study of one example on ``n`` draws (half train, half test)."""
+    """The seeded study of one example (half of the draws train, half test).
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+    n : int, optional
+        Draws (≥ 2).
+    seed : int, optional
+
+    Returns
+    -------
+    Study
+    """
     n = as_count("n", n, 2)
     draws = [draw_result(example, i, seed) for i in range(n)]
     return _choose(example, draws, seed)
 
 
+@cached
 def rho_t_family(example: str, law: str) -> dict:
-    """The paper's ρ_t family (the aircraft's T = 500 s; the generic example's own T) under the
-    chosen law: its energy over the best fixed gain of the comparator set at each ρ_t."""
+    """The paper's ρ_t family (the aircraft's T = 500 s; the generic example's own T) under a
+    law: its energy over the best fixed controller of the comparator set at each ρ_t.
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+    law : str
+        ``law/realization/λ/h``.
+
+    Returns
+    -------
+    dict
+        ``{"rho_t": [...], "ratio_vs_best_fixed": [...]}``.
+    """
     from .data import paper_data
     from .generic_example import RHO_T, piecewise_disturbance
     from .nonstationary_sweeps import family_signal
@@ -384,10 +290,25 @@ def rho_t_family(example: str, law: str) -> dict:
         out["ratio_vs_best_fixed"].append(r.energy / best)
     return out
 
-
 def full_study(n: int = N_FULL, *, seed: int = SEED, executor=None, out=FULL_FILE) -> dict:
-    """The full study of both examples (``n`` draws each), on ``executor`` if given; writes
-    ``out`` (JSON: the summaries and every test draw's ratio) and returns it."""
+    """The full study of both examples.
+
+    Parameters
+    ----------
+    n : int, optional
+        Draws per example (half train, half test).
+    seed : int, optional
+    executor : concurrent.futures.Executor or dask.distributed.Client, optional
+        Where the draws run (default here, one after the other); the numbers do not depend on it.
+    out : path, optional
+        The JSON file to write (None: none).
+
+    Returns
+    -------
+    dict
+        ``commit``, ``fingerprint``, ``n``, ``seed``, and per example the summary
+        (:meth:`Study.summary`) with every test draw's ratios.
+    """
     from .cache import fingerprint
     from .environment import build_commit
 
@@ -414,7 +335,17 @@ def full_study(n: int = N_FULL, *, seed: int = SEED, executor=None, out=FULL_FIL
 
 
 def load_full(path=FULL_FILE):
-    """The full study written by :func:`full_study`, or None if absent."""
+    """The full study written by :func:`full_study`.
+
+    Parameters
+    ----------
+    path : path, optional
+
+    Returns
+    -------
+    dict or None
+        None if the file is absent.
+    """
     path = Path(path)
     if not path.is_file():
         return None

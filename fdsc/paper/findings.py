@@ -14,7 +14,7 @@ from .comparators import COMPARATORS, best_fixed
 from .prose import count, num, pct, times
 from .record import PAPER_FIGURES, figure_status
 
-__all__ = ["Findings", "findings", "PRINTED_BOUNDS"]
+__all__ = ["Findings", "findings", "law_sentence", "PRINTED_BOUNDS"]
 
 #: The record entries of the four bounds printed beside the gains (Sec. IV), in the paper's order.
 PRINTED_BOUNDS = ("bound_f1", "bound_f2", "bound_f3", "bound_e")
@@ -73,6 +73,10 @@ class Findings:
     thm1_feasible, thm1_diverging : int
         Mode pairs of the counterexample search that Theorem 1 certifies, and those of them that
         diverge under the printed law (measured ẋ).
+    law : dict
+        ``{example: summary}`` of the law on the disturbance estimate on the test draws of the
+        full non-stationary study (:func:`fdsc.paper.disturbance_law.load_full`), or of the
+        record's seeded subset where the full study is absent.
     """
 
     verdicts: dict
@@ -98,6 +102,7 @@ class Findings:
     q_gammas: tuple
     thm1_feasible: int
     thm1_diverging: int
+    law: dict
 
     def prose(self):
         """The formatted numbers the landing page quotes.
@@ -137,11 +142,50 @@ class Findings:
                     f"mc_{example}_win_rate_advance": pct(mc["win_rate_advance"])}
         for example, ratio in self.ideal.items():
             out[f"ideal_{example}"] = times(ratio)
+        out["law_sentence"] = law_sentence(self.law)
         bad = [f"{printed} ({verdict})" for printed, verdict in self.bounds.values()
                if verdict in _NOT]
         out["bounds_bad"] = count(len(bad))
         out["bounds_bad_list"] = ", ".join(bad) if bad else "none"
         return out
+
+
+def law_sentence(law):
+    """One sentence per example: whether the law on the disturbance estimate pays, by how much
+    and against which baseline (or which oracle bounds it).
+
+    Parameters
+    ----------
+    law : dict
+        ``{example: summary}`` (see :class:`Findings`).
+
+    Returns
+    -------
+    str
+    """
+    parts = []
+    for example, r in law.items():
+        ratio, win = r["median_ratio_vs_fixed_in_advance"], r["win_rate_vs_fixed_in_advance"]
+        oracle = r["oracle_median_ratio_vs_fixed_in_advance"]
+        against = f"the fixed gain chosen in advance ({r['fixed_in_advance']})"
+        if ratio < 1 and oracle < 0.95:
+            parts.append(f"on the {example} example it pays: median energy {times(ratio)} that of "
+                         f"{against}, less on {pct(win)} of {count(r['draws_test'])} test draws")
+        else:
+            parts.append(f"on the {example} example it cannot pay much: median {times(ratio)} "
+                         f"{against}, because even a clairvoyant per-segment oracle reaches only "
+                         f"{times(oracle)}")
+    return "; ".join(parts)
+
+
+def _law(record):
+    from .disturbance_law import load_full
+
+    full = load_full()
+    if full is not None:
+        return {e: full[e] for e in ("generic", "aircraft")}
+    rec = _entries(record)["supervisor"]["recomputed"]
+    return {e: rec[e] for e in ("generic", "aircraft")}
 
 
 def _entries(record):
@@ -186,7 +230,7 @@ def findings(record):
         If the record lacks an entry the findings need (named).
     """
     e = _entries(record)
-    needed = ("K_f1", "K_f2", "K_f3", "K_e", "comparators", "baselines", "monte_carlo",
+    needed = ("K_f1", "K_f2", "K_f3", "K_e", "comparators", "baselines", "monte_carlo", "supervisor",
               "mixed_crossover", "thm1_gammas", "theorem1_counterexamples", *PRINTED_BOUNDS)
     missing = [k for k in needed if k not in e]
     if missing:
@@ -221,7 +265,8 @@ def findings(record):
         crossover=float(crossover["recomputed"]["PassC-LF"]), crossover_printed=float(crossover["paper"]),
         bounds={k: (e[k]["paper"], e[k]["verdict"]) for k in PRINTED_BOUNDS},
         q_gammas=tuple(float(g) for g in e["thm1_gammas"]["recomputed"]["paper_Q"]),
-        thm1_feasible=int(tc["feasible"]), thm1_diverging=int(tc["diverging_previous"]))
+        thm1_feasible=int(tc["feasible"]), thm1_diverging=int(tc["diverging_previous"]),
+        law=_law(record))
 
 
 def _poles():

@@ -27,6 +27,12 @@ STYLES = {
     "FDSC (our Q)": ("tab:green", "P", "--"),
     "FDSC (candidate ẋ)": ("tab:cyan", "d", ":"),
     "ideal segment law": ("k", ".", "-."),
+    "front 1": ("#08519c", "o", "--"),
+    "front 2": ("#3182bd", "o", "--"),
+    "front 3": ("#6baed6", "o", "--"),
+    "law on ŵ": ("darkgreen", "o", "-"),
+    "band-power law": ("tab:cyan", "d", "--"),
+    "clairvoyant oracle": ("k", "*", ":"),
 }
 
 #: A printed gain → the controller it is (and is drawn as).

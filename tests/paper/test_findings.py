@@ -56,3 +56,24 @@ def test_prose_is_formatted(found):
 def test_missing_entries_are_named():
     with pytest.raises(KeyError, match="lacks the entries .*comparators"):
         findings({"entries": [], "figures": {}, "claims": []})
+
+
+def test_the_law_sentence_says_whether_it_pays_and_against_what():
+    from fdsc.paper.findings import law_sentence
+
+    pays = {"median_ratio_vs_fixed_in_advance": 0.6, "win_rate_vs_fixed_in_advance": 0.93,
+            "oracle_median_ratio_vs_fixed_in_advance": 0.5, "fixed_in_advance": "front 1",
+            "draws_test": 250}
+    flat = dict(pays, median_ratio_vs_fixed_in_advance=0.995, oracle_median_ratio_vs_fixed_in_advance=0.998,
+                fixed_in_advance="PassC-LF")
+    text = law_sentence({"generic": pays, "aircraft": flat})
+    assert text.startswith("on the generic example it pays: median energy ×0.600 that of the fixed gain "
+                           "chosen in advance (front 1), less on 93% of 250 test draws")
+    assert "on the aircraft example it cannot pay much: median ×0.995" in text
+    assert "clairvoyant per-segment oracle reaches only ×0.998" in text
+
+
+def test_the_law_comes_from_the_full_study_or_the_record(found):
+    assert set(found.law) == {"generic", "aircraft"}
+    for r in found.law.values():
+        assert r["certified"] is True and r["diverged"] == 0

@@ -20,7 +20,7 @@ MAX_LINES = 600
 #: and the figures (bound_search, plotting).
 ENTRY_MODULES = ("frequency_ranges", "gkyp_lemma", "passive_controllers", "frequency_selective",
                  "theorem1", "stationary", "nonstationary", "wellposed",
-                 "theorem1_counterexamples", "bound_search", "plotting")
+                 "theorem1_counterexamples", "disturbance_law", "bound_search", "plotting")
 
 #: Entry modules whose chapter contributes to the reproduction record.
 CHAPTER_ENTRIES = tuple(m for m in ENTRY_MODULES if m not in ("bound_search", "plotting"))

@@ -147,3 +147,31 @@ def test_the_merged_entries_have_their_shape(validator):
     assert "-1 is less than the minimum of 0" in _errors(validator, record)
     comparators["recomputed"]["aircraft"]["best"]["stationary"]["open loop"] = 2
     validator.validate(record)
+
+
+def test_the_law_entries_have_their_shape(validator):
+    """The Pareto front lists its points; the law's entry holds every field, per example."""
+    record = synthetic_record()
+    point = {"beta": 0.4, "gamma_hf": 0.40, "gamma_lf": 0.39, "certified": True}
+    front = entry("pareto_front", "ours", None, {"aircraft": [point], "generic": []}, "new", "n")
+    record["entries"].append(front)
+    assert "should be non-empty" in _errors(validator, record)
+    front["recomputed"]["generic"] = [dict(point, beta=-1.0)]
+    assert "less than or equal to the minimum of 0" in _errors(validator, record)
+    front["recomputed"]["generic"] = [point]
+    validator.validate(record)
+    one = {"draws_test": 8, "fixed_in_advance": "PassC-LF", "median_ratio_vs_fixed_in_advance": 0.99,
+           "p95_ratio_vs_fixed_in_advance": 1.0, "win_rate_vs_fixed_in_advance": 0.75,
+           "median_ratio_vs_best_fixed_per_draw": 0.99, "oracle_share_median": None,
+           "switches_per_change": 3.0, "diverged": 0, "rho_t_ratio_vs_best_fixed": [1.0, 0.9],
+           "certified": True, "law": {"law": "cost", "realization": "copies", "forgetting": 0.2,
+                                       "hysteresis": 0.1}}
+    law = entry("supervisor", "ours", None, {"aircraft": one, "generic": dict(one, law={})}, "new", "n")
+    record["entries"].append(law)
+    assert "'law' is a required property" in _errors(validator, record)
+    law["recomputed"]["generic"] = dict(one, win_rate_vs_fixed_in_advance=1.5)
+    assert "1.5 is greater than the maximum of 1" in _errors(validator, record)
+    law["recomputed"]["generic"] = {k: v for k, v in one.items() if k != "certified"}
+    assert "'certified' is a required property" in _errors(validator, record)
+    law["recomputed"]["generic"] = one
+    validator.validate(record)
