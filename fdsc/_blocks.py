@@ -1,12 +1,14 @@
 """Exact runs of LTI systems on a coarse grid of instants, with energies integrated exactly.
 
-Internal: the engine of :func:`fdsc.supervisor.supervise` (its monitoring copies, and its
-switched run when no step is given) and of :func:`fdsc.supervisor.exact_energy`.
+Internal: the engine of :func:`fdsc.supervisor.supervise` and :class:`fdsc.supervisor.Prepared`
+(the monitoring copies, the switched runs, fixed runs and segment laws).
 
 On an interval where the disturbance is ``d(t) = Σ_j a_j sin(ω_j t + φ_j)``, the system
 ``ẋ = A x + B d, z = C x + D d`` and the tones' oscillators ``c_j = cos(ω_j t + φ_j)``,
-``s_j = sin(ω_j t + φ_j)`` form one autonomous linear system ``ξ̇ = F ξ``, ``ξ = [x; c; s]``,
-``z = G ξ`` with ``G = [C, 0, D aᵀ]``. Over a step of length h
+``s_j = sin(ω_j t + φ_j)`` form one autonomous linear system ``ξ̇ = F ξ``, ``ξ = [x; a∘c; a∘s]``
+(the oscillators scaled by their amplitudes, so that F and G do not depend on them and a large
+amplitude does not unbalance the block exponential), ``z = G ξ`` with ``G = [C, 0, D 1ᵀ]``. Over
+a step of length h
 
     x(t + h) = [Φ, M] ξ(t),       ∫_t^{t+h} ‖z‖² = ξ(t)ᵀ Q ξ(t),
 
@@ -61,20 +63,21 @@ def pieces(d, horizon: float) -> list:
     return out
 
 
-def _pair(A, B, C, D, w, a, h):
-    """``([Φ, M], Q)`` of one step of length h (module docstring), padded by the caller."""
+def _pair(A, B, C, D, w, h):
+    """``([Φ, M], Q)`` of one step of length h for unit amplitudes (module docstring), padded by
+    the caller."""
     n, T = A.shape[0], w.size
     W = n + 2 * T
     F = np.zeros((W, W))
     F[:n, :n] = A
     if T:
-        F[:n, n + T:] = B @ a[None, :]
+        F[:n, n + T:] = B @ np.ones((1, T))
         F[n:n + T, n + T:] = -np.diag(w)
         F[n + T:, n:n + T] = np.diag(w)
     G = np.zeros((C.shape[0], W))
     G[:, :n] = C
     if T:
-        G[:, n + T:] = D @ a[None, :]
+        G[:, n + T:] = D @ np.ones((1, T))
     GtG = G.T @ G
     norm = float(np.abs(F).sum(axis=0).max()) * h
     k = max(0, math.ceil(math.log2(norm))) if norm > 1 else 0
@@ -128,12 +131,12 @@ class Grid:
         self.kind = kind
         self.kinds = [(pc, hn / 1e9) for (pc, hn) in keys]
         cs = np.zeros((h.size, 2 * self.T))
-        for k, (_t0, _t1, w, _a, ph) in enumerate(self.pieces):
+        for k, (_t0, _t1, w, a, ph) in enumerate(self.pieces):
             sel = self.piece == k
             if w.size:
                 arg = np.outer(starts[sel], w) + ph[None, :]
-                cs[sel, :w.size] = np.cos(arg)
-                cs[sel, self.T:self.T + w.size] = np.sin(arg)
+                cs[sel, :w.size] = a[None, :] * np.cos(arg)
+                cs[sel, self.T:self.T + w.size] = a[None, :] * np.sin(arg)
         self.cs = cs
 
     def tables(self, systems) -> tuple:
@@ -144,11 +147,11 @@ class Grid:
         PHI = np.zeros((len(self.kinds), len(systems), n, W))
         Q = np.zeros((len(self.kinds), len(systems), W, W))
         for k, (pc, h) in enumerate(self.kinds):
-            _t0, _t1, w, a, _ph = self.pieces[pc]
+            _t0, _t1, w, _a, _ph = self.pieces[pc]
             T = w.size
             idx = np.r_[np.arange(n), n + np.arange(T), n + self.T + np.arange(T)]
             for i, (A, B, C, D) in enumerate(systems):
-                P, q = _pair(A, B, C, D, w, a, h)
+                P, q = _pair(A, B, C, D, w, h)
                 PHI[k, i][:, idx] = P
                 Q[k, i][np.ix_(idx, idx)] = q
         return PHI, Q
@@ -161,6 +164,11 @@ class Grid:
         stop = self.kind.size if stop is None else stop
         S = stop - start
         system = np.broadcast_to(np.asarray(system, dtype=np.int64), (self.kind.size,))[start:stop].copy()
+        if system.size and (system.min() < 0 or system.max() >= PHI.shape[1]):
+            raise ValueError(f"a step's system index must be in [0, {PHI.shape[1]}), but found "
+                             f"{int(system.min())} to {int(system.max())}")
+        if np.shape(x0) != (PHI.shape[2],):
+            raise ValueError(f"x0 must have {PHI.shape[2]} entries, but found shape {np.shape(x0)}")
         restart = np.broadcast_to(np.asarray(restart, dtype=np.bool_), (self.kind.size,))[start:stop].copy()
         e, big = np.empty(S), np.empty(S)
         x = np.array(x0, dtype=float)

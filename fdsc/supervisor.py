@@ -54,7 +54,7 @@ from numba import njit
 
 from . import _divergence
 from ._validation import as_nonnegative, as_positive, as_vector, check_type
-from .exceptions import UnstableRunWarning
+from .exceptions import DimensionError, EnergyOverflowError, UnstableRunWarning
 from .signals import Piecewise, Sinusoids
 
 __all__ = ["SupervisedRun", "Supervisor", "Prepared", "LAWS", "supervise", "band_filter",
@@ -125,6 +125,8 @@ def shift_signal(d, tau: float):
     ------
     TypeError
         If ``d`` is neither.
+    ValueError
+        If ``tau`` is not a finite real number.
 
     Examples
     --------
@@ -135,6 +137,10 @@ def shift_signal(d, tau: float):
     >>> np.allclose(shift_signal(p, 0.5)([0.2, 0.7, 2.0]), p([0.7, 1.2, 2.5]), rtol=1e-14)
     True
     """
+    if isinstance(tau, bool) or not isinstance(tau, int | float | np.integer | np.floating) \
+            or not math.isfinite(tau):
+        raise ValueError(f"tau must be a finite real number of seconds, but found {tau!r}")
+    tau = float(tau)
     if isinstance(d, Sinusoids):
         return Sinusoids(d.amplitudes, d.frequencies, d.phases + d.frequencies * tau)
     if isinstance(d, Piecewise):
@@ -157,6 +163,12 @@ def lqr_gain(plant) -> np.ndarray:
     (m_u, n) ndarray
         ``u = K x``.
 
+    Raises
+    ------
+    ValueError
+        If the Riccati equation has no stabilizing solution, or its gain does not stabilize
+        A + B2 K (a mode the cost does not see).
+
     Examples
     --------
     >>> from fdsc import Plant
@@ -174,8 +186,19 @@ def lqr_gain(plant) -> np.ndarray:
     if np.linalg.matrix_rank(R) < R.shape[0]:
         R = R + 1e-9 * max(1.0, float(np.linalg.norm(R))) * np.eye(R.shape[0])
     S = C.T @ D2
-    P = solve_continuous_are(plant.A, plant.B2, C.T @ C, R, s=S)
-    return -np.linalg.solve(R, plant.B2.T @ P + S.T)
+    try:
+        P = solve_continuous_are(plant.A, plant.B2, C.T @ C, R, s=S)
+    except (np.linalg.LinAlgError, ValueError) as exc:
+        raise ValueError(f"plant: the LQR problem of (A, B2, C, D2) has no stabilizing solution "
+                         f"((A, B2) not stabilizable or (A, C) not detectable on the imaginary "
+                         f"axis): {exc}") from exc
+    K = -np.linalg.solve(R, plant.B2.T @ P + S.T)
+    worst = float(np.max(np.linalg.eigvals(plant.A + plant.B2 @ K).real))
+    if not worst < 0:
+        raise ValueError(f"plant: the LQR gain of (A, B2, C, D2) does not stabilize A + B2 K (an "
+                         f"eigenvalue has real part {worst:.3g}): the cost ∫‖C x + D2 u‖² does not "
+                         f"see every unstable mode; choose K0 yourself")
+    return K
 
 
 def _augmented(plant, gains, K0, m):
@@ -212,6 +235,14 @@ def band_filter(band):
     LTISystem
         Input ŵ, output the filtered ŵ.
 
+    Raises
+    ------
+    TypeError
+        If ``band`` is not a Band.
+    ValueError
+        If an edge lies outside [1e-6, 1e6] rad/s, where the filter's output is lost to
+        rounding (its pass band is then a vanishing part of what it is fed).
+
     Examples
     --------
     >>> from fdsc import Band, freqresp
@@ -224,6 +255,10 @@ def band_filter(band):
     from .plant import LTISystem
 
     check_type("band", band, Band, "an fdsc.Band")
+    edges = [w for w in (band.lower, band.upper) if 0 < w < math.inf]
+    if any(w > MAX_FILTER_EDGE or w < 1.0 / MAX_FILTER_EDGE for w in edges):
+        raise ValueError(f"band: the monitoring filter resolves band edges in [1e-6, 1e6] rad/s, "
+                         f"but {band.label} has edges {edges}")
 
     def section(w, high):
         A = np.array([[0.0, 1.0], [-w * w, -math.sqrt(2.0) * w]])
@@ -249,6 +284,8 @@ def band_filter(band):
 
 
 LAWS = ("cost", "band_power")
+#: The band edges (rad/s) a monitoring filter resolves: [1 / MAX_FILTER_EDGE, MAX_FILTER_EDGE].
+MAX_FILTER_EDGE = 1e6
 
 
 class Supervisor:
@@ -273,7 +310,8 @@ class Supervisor:
         Δ (s): the law decides at ``0, Δ, 2Δ, …``; the monitoring signals are updated there,
         ``μ_k = e^{−λΔ} μ_{k−1} + ∫ over the interval of ‖z_i‖²``.
     restart : float, optional
-        Period (s, at least 2Δ) of the monitors' restarts: two banks restarted from rest half
+        Period (s, at least 2Δ, rounded to a whole number of decision intervals, which
+        ``.restart`` then holds) of the monitors' restarts: two banks restarted from rest half
         a period apart; the law reads the bank whose copies are older, so it forgets ŵ older
         than ``restart`` and never reads copies younger than ``restart / 2`` (after the first
         ``restart / 2`` seconds).
@@ -326,7 +364,12 @@ class Supervisor:
             if bands is None or not hasattr(bands, "__len__") or len(bands) != len(gains):
                 raise ValueError(f"bands must give one Band per gain ({len(gains)}) for the "
                                  f"band-power law, but found {bands!r}")
-            self.monitors = [band_filter(b) for b in bands]
+            self.monitors = []
+            for k, b in enumerate(bands):
+                try:
+                    self.monitors.append(band_filter(b))
+                except (TypeError, ValueError) as exc:
+                    raise type(exc)(f"bands[{k}]: {exc}") from exc
         elif bands is not None:
             raise ValueError("bands is used by the band-power law only (law='band_power')")
         else:
@@ -338,6 +381,7 @@ class Supervisor:
         if self.restart_blocks < 2:
             raise ValueError(f"restart must be at least two decision intervals "
                              f"({2 * self.decide_every:g} s), but found {restart!r}")
+        self.restart = self.restart_blocks * self.decide_every     # the period used
         if K0 is not None:
             K0 = np.array(as_matrix("K0", K0, (mu_, n)))
             worst = float(np.max(np.linalg.eigvals(plant.A + plant.B2 @ K0).real))
@@ -358,7 +402,7 @@ class Supervisor:
             return list(self.loops)
         return [_augmented(self.plant, self.gains, self.K0, m) for m in range(len(self.gains))]
 
-    def prepare(self, d, horizon: float, *, x0=None) -> Prepared:
+    def prepare(self, d, horizon: float, *, x0=None, estimate=None) -> Prepared:
         """The monitors' interval energies and the loops' step tables for one disturbance, from
         which :meth:`Prepared.run` evaluates the law for any forgetting and hysteresis.
 
@@ -370,12 +414,16 @@ class Supervisor:
             Run length (s), a whole number of decision intervals.
         x0 : (n,) array_like, optional
             Initial state of the plant (default 0); the monitors start from rest.
+        estimate : Sinusoids or Piecewise, optional
+            The signal the monitors are driven by, if not ``d`` itself: an estimate ŵ with
+            errors (e.g. ``d`` plus measurement noise). Only the decisions see it; the plant and
+            the copies of the realization are driven by ``d``.
 
         Returns
         -------
         Prepared
         """
-        return Prepared(self, d, horizon, x0)
+        return Prepared(self, d, horizon, x0, estimate)
 
     def run(self, d, horizon: float, *, x0=None, **law) -> SupervisedRun:
         """One run of the law: ``self.prepare(d, horizon, x0=x0).run(**law)``.
@@ -447,6 +495,8 @@ class Prepared:
         A whole number of decision intervals (s).
     x0 : (n,) array_like or None
         Initial state of the plant.
+    estimate : Sinusoids or Piecewise or None, optional
+        What the monitors are driven by (default ``d``; see :meth:`Supervisor.prepare`).
 
     Raises
     ------
@@ -456,7 +506,7 @@ class Prepared:
         If ``horizon`` is not a whole number of decision intervals or ``x0`` has the wrong size.
     """
 
-    def __init__(self, sup: Supervisor, d, horizon, x0):
+    def __init__(self, sup: Supervisor, d, horizon, x0, estimate=None):
         from ._blocks import Grid
 
         check_type("d", d, Sinusoids | Piecewise, "an fdsc.Sinusoids or fdsc.Piecewise")
@@ -471,25 +521,32 @@ class Prepared:
         self.points = np.arange(nb + 1) * sup.decide_every
         self.points[-1] = horizon
         g = self.grid = Grid(d, self.points)
+        if estimate is not None:
+            check_type("estimate", estimate, Sinusoids | Piecewise, "an fdsc.Sinusoids or fdsc.Piecewise")
+        gm = g if estimate is None else Grid(estimate, self.points)
         # the monitors' energies per decision interval, for each bank of restarts
         R, half = sup.restart_blocks, max(1, sup.restart_blocks // 2)
         self.starts = (np.arange(0, nb, R), np.r_[0, np.arange(half, nb, R)])
         self.E = np.zeros((2, nb, len(sup.monitors)))
         if sup.law == "cost":                    # the monitors are the closed loops: one table
-            shared = g.tables([_abcd(m) for m in sup.monitors])
+            shared = gm.tables([_abcd(m) for m in sup.monitors])
             tables = [(shared, i) for i in range(len(sup.monitors))]
         else:
-            tables = [(g.tables([_abcd(m)]), 0) for m in sup.monitors]
+            tables = [(gm.tables([_abcd(m)]), 0) for m in sup.monitors]
         for b, st in enumerate(self.starts):
             at = np.zeros(nb + 1, dtype=bool)
             at[st] = True
-            restart = at[g.block] & np.r_[True, g.block[1:] != g.block[:-1]]
+            restart = at[gm.block] & np.r_[True, gm.block[1:] != gm.block[:-1]]
             for i, (m, (tab, j)) in enumerate(zip(sup.monitors, tables, strict=True)):
-                e, _big, _x = g.run(tab, j, restart, np.zeros(m.A.shape[0]))
-                self.E[b, :, i] = g.per_block(e)
+                e, _big, _x = gm.run(tab, j, restart, np.zeros(m.A.shape[0]))
+                self.E[b, :, i] = gm.per_block(e)
+        if not np.all(np.isfinite(self.E)):
+            raise EnergyOverflowError("prepare: a monitor's energy is not finite (a candidate's "
+                                      "loop, or the disturbance's scale, is beyond what floats "
+                                      "integrate: its energy exceeds about 1e308)")
         self.input_energy = float(g.run(g.tables([_dummy_input()]), 0, False, np.zeros(1))[0].sum())
         self.loops = sup.switched_loops()
-        if sup.law == "cost" and sup.K0 is None:
+        if sup.law == "cost" and sup.K0 is None and estimate is None:
             self.tables = shared
         else:
             self.tables = g.tables([_abcd(lp) for lp in self.loops])
@@ -562,6 +619,13 @@ class Prepared:
         """
         h = as_nonnegative("hysteresis", hysteresis)
         nm = len(self.sup.gains)
+        mu = np.asarray(mu)
+        if mu.shape != (self.n_blocks + 1, nm) or not np.issubdtype(mu.dtype, np.floating):
+            raise ValueError(f"mu must be a float array of shape {(self.n_blocks + 1, nm)} (one row "
+                             f"per decision point, one column per candidate), but found "
+                             f"{mu.dtype} of shape {mu.shape}")
+        if not np.all(np.isfinite(mu)) or np.any(mu < 0):
+            raise ValueError("mu must hold finite, non-negative monitoring signals")
         if isinstance(sigma0, bool) or not isinstance(sigma0, int | np.integer) or not 0 <= sigma0 < nm:
             raise ValueError(f"sigma0 must be a candidate's index in [0, {nm}), but found {sigma0!r}")
         step = self.sup.decide_every
@@ -598,10 +662,15 @@ class Prepared:
             If the state at a switch or at the end exceeds the divergence monitor's bound.
         """
         g = self.grid
-        sigma = np.asarray(sigma, dtype=np.int64)
-        if sigma.shape != (self.n_blocks,) or sigma.min() < 0 or sigma.max() >= len(self.loops):
-            raise ValueError(f"sigma must hold one candidate index in [0, {len(self.loops)}) per "
-                             f"decision interval ({self.n_blocks}), but found shape {sigma.shape}")
+        sigma = np.asarray(sigma)
+        if sigma.shape != (self.n_blocks,) or not np.issubdtype(sigma.dtype, np.integer):
+            raise ValueError(f"sigma must be an integer array of one candidate index per decision "
+                             f"interval ({self.n_blocks}), but found {sigma.dtype} of shape "
+                             f"{sigma.shape}")
+        if sigma.min() < 0 or sigma.max() >= len(self.loops):
+            raise ValueError(f"sigma must hold candidate indices in [0, {len(self.loops)}), but "
+                             f"found {int(sigma.min())} to {int(sigma.max())}")
+        sigma = sigma.astype(np.int64)
         e, big, x = g.run(self.tables, sigma[g.block], False, self.xstart)
         change = np.flatnonzero(np.diff(sigma)) + 1
         # the divergence monitor's rule (fdsc._divergence) at the switches and at the end
@@ -609,6 +678,9 @@ class Prepared:
         ends = np.r_[np.searchsorted(g.block, change) - 1, e.size - 1]
         ends = ends[ends >= 0]
         over = np.flatnonzero(big[ends] > limit)
+        if not over.size and np.all(np.isfinite(big)) and not np.all(np.isfinite(e)):
+            raise EnergyOverflowError(f"{where}: the state stays finite but the energy exceeds the "
+                                      "float range (about 1.8e308): scale the disturbance down")
         diverged = None
         if over.size or not np.all(np.isfinite(e)):
             s = int(ends[over[0]]) if over.size else int(np.flatnonzero(~np.isfinite(e))[0])
@@ -665,7 +737,13 @@ class Prepared:
         -------
         float
         """
-        return self.run_sequence(np.full(self.n_blocks, int(i))).energy
+        return self.run_sequence(np.full(self.n_blocks, self._index("i", i))).energy
+
+    def _index(self, name, i):
+        nm = len(self.loops)
+        if isinstance(i, bool) or not isinstance(i, int | np.integer) or not 0 <= i < nm:
+            raise ValueError(f"{name} must be a candidate's index in [0, {nm}), but found {i!r}")
+        return int(i)
 
     def energy_of(self, loop) -> float:
         """∫zᵀz of any other loop from x0, by the same exact engine.
@@ -678,9 +756,27 @@ class Prepared:
         Returns
         -------
         float
+
+        Raises
+        ------
+        TypeError, DimensionError, ValueError
+            If ``loop`` is not an LTISystem of the plant's size with one input, or not stable.
         """
+        from .plant import LTISystem
+
+        check_type("loop", loop, LTISystem, "an fdsc.LTISystem")
+        n = self.x0.size
+        if loop.A.shape != (n, n) or loop.B.shape[1] != 1:
+            raise DimensionError(f"loop must have the plant's {n} states and one input, but found "
+                                 f"A {loop.A.shape} and B {loop.B.shape}")
+        worst = float(np.max(np.linalg.eigvals(loop.A).real))
+        if worst >= 0:
+            raise ValueError(f"loop must be stable, but A has an eigenvalue with real part {worst:.4g}")
         g = self.grid
-        return float(g.run(g.tables([_abcd(loop)]), 0, False, self.x0)[0].sum())
+        e = float(g.run(g.tables([_abcd(loop)]), 0, False, self.x0)[0].sum())
+        if not math.isfinite(e):
+            raise EnergyOverflowError("energy_of: the energy exceeds the float range (about 1.8e308)")
+        return e
 
     def piece_steps(self) -> list:
         """The steps of every piece of d (zero stretches included).
@@ -713,11 +809,14 @@ class Prepared:
         """
         g, x, total = self.grid, self.xstart.copy(), 0.0
         spans = self.piece_steps()
+        if isinstance(choice, str) or not hasattr(choice, "__len__"):
+            raise TypeError(f"choice must be a sequence of candidate indices, but found {choice!r}")
         if len(choice) != len(spans):
             raise ValueError(f"choice must name one candidate per piece ({len(spans)}), but found "
                              f"{len(choice)}")
+        choice = [self._index(f"choice[{k}]", c) for k, c in enumerate(choice)]
         for (a, b), c in zip(spans, choice, strict=True):
-            e, _big, x = g.run(self.tables, int(c), False, x, a, b)
+            e, _big, x = g.run(self.tables, c, False, x, a, b)
             total += float(e.sum())
         return total
 

@@ -149,6 +149,7 @@ def test_the_divergence_monitor_is_applied_at_the_switches(monkeypatch):
 
 # --- the exact engine, the band-power law, the oracles --------------------------------------
 
+import fdsc  # noqa: E402
 from fdsc import Band, Supervisor, band_filter, freqresp, simulate_stream  # noqa: E402
 from fdsc._blocks import Grid  # noqa: E402
 
@@ -271,7 +272,92 @@ def test_bad_law_options_are_refused_by_name(kwargs, error, match):
 
 def test_a_sequence_of_the_wrong_shape_is_refused():
     prep = Supervisor(PLANT, GAINS).prepare(SLOW, 1.0)
-    with pytest.raises(ValueError, match="sigma must hold one candidate index"):
+    with pytest.raises(ValueError, match="sigma must be an integer array of one candidate index"):
         prep.run_sequence(np.zeros(3, dtype=int))
-    with pytest.raises(ValueError, match="sigma must hold one candidate index"):
-        prep.run_sequence(np.full(10, 2))
+    with pytest.raises(ValueError, match="sigma must be an integer array"):
+        prep.run_sequence(np.full(10, 0.7))
+    with pytest.raises(ValueError, match=r"sigma must hold candidate indices in \[0, 2\), but found 0 to 2"):
+        prep.run_sequence(np.r_[np.zeros(9, dtype=int), 2])
+    with pytest.raises(ValueError, match="sigma must hold candidate indices"):
+        prep.run_sequence(np.full(10, -1))
+
+
+@pytest.mark.parametrize(("call", "error", "match"), [
+    (lambda p: p.segment_law([0, 100000000]), ValueError, r"choice\[1\] must be a candidate's index"),
+    (lambda p: p.segment_law([0, -1]), ValueError, r"choice\[1\] must be a candidate's index"),
+    (lambda p: p.segment_law([0.5, 1.5]), ValueError, r"choice\[0\] must be a candidate's index"),
+    (lambda p: p.segment_law(None), TypeError, "choice must be a sequence"),
+    (lambda p: p.fixed(-1), ValueError, r"i must be a candidate's index in \[0, 2\)"),
+    (lambda p: p.fixed(1.5), ValueError, "i must be a candidate's index"),
+    (lambda p: p.fixed(True), ValueError, "i must be a candidate's index"),
+    (lambda p: p.decide(np.zeros((3, 2))), ValueError, r"mu must be a float array of shape \(501, 2\)"),
+    (lambda p: p.decide(np.full((501, 2), np.nan)), ValueError, "mu must hold finite, non-negative"),
+    (lambda p: p.decide(-np.ones((501, 2))), ValueError, "mu must hold finite, non-negative"),
+    (lambda p: p.decide(np.zeros(501)), ValueError, "mu must be a float array"),
+    (lambda p: p.energy_of(np.eye(2)), TypeError, "loop must be an fdsc.LTISystem"),
+    (lambda p: p.energy_of(PLANT.closed_loop(GAINS[0]).__class__(np.eye(3) * -1, np.ones((3, 1)),
+                                                                    np.ones((1, 3)), [[0.0]])),
+     DimensionError, "loop must have the plant's 2 states"),
+    (lambda p: p.energy_of(PLANT.closed_loop(np.array([[5.0, 0.0]]))), ValueError, "loop must be stable"),
+])
+def test_prepared_refuses_bad_input_by_name(call, error, match):
+    prep = Supervisor(PLANT, GAINS).prepare(TWO, 50.0)         # two pieces, 500 decisions
+    with pytest.raises(error, match=match):
+        call(prep)
+
+
+def test_the_energies_scale_with_the_disturbance_squared_up_to_huge_amplitudes():
+    # the oscillators carry the amplitudes, so the step tables do not depend on them
+    d = Piecewise([0.0, 40.0, 100.0], [Sinusoids([1.0, 0.5], [0.2, 0.3]), Sinusoids([1.0], [12.0])])
+    ref = supervise(PLANT, GAINS, d, 100.0)
+    for a in (1e-100, 1e12, 1e100):
+        big = Piecewise(d.breaks, [p.scaled(a) for p in d.parts])
+        r = supervise(PLANT, GAINS, big, 100.0)
+        np.testing.assert_array_equal(r.switch_times, ref.switch_times)
+        assert r.energy == pytest.approx(a * a * ref.energy, rel=1e-9)
+        assert r.input_energy == pytest.approx(a * a * ref.input_energy, rel=1e-9)
+    huge = Piecewise(d.breaks, [p.scaled(1e160) for p in d.parts])
+    with pytest.raises(fdsc.EnergyOverflowError, match="not finite"):
+        supervise(PLANT, GAINS, huge, 100.0)
+
+
+def test_band_filters_refuse_edges_they_cannot_resolve():
+    with pytest.raises(ValueError, match=r"resolves band edges in \[1e-6, 1e6\]"):
+        band_filter(Band.hf(1e8))
+    with pytest.raises(ValueError, match=r"bands\[1\]: .*resolves band edges"):
+        supervise(PLANT, GAINS, SLOW, 1.0, law="band_power", bands=[Band.lf(1.0), Band.hf(1e8)])
+    with pytest.raises(TypeError, match=r"bands\[0\]: band must be an fdsc.Band"):
+        supervise(PLANT, GAINS, SLOW, 1.0, law="band_power", bands=[(0, 1), Band.hf(5.0)])
+
+
+def test_lqr_gain_refuses_a_plant_it_cannot_stabilize():
+    # a double integrator whose cost sees nothing: the LQR "gain" is zero and does not stabilize
+    blind = Plant([[0.0, 1.0], [0.0, 0.0]], [[0.0], [1.0]], [[0.0], [1.0]], [[0.0, 0.0]], [[0.0]], [[1.0]])
+    with pytest.raises(ValueError, match="does not stabilize|no stabilizing solution"):
+        lqr_gain(blind)
+
+
+def test_shift_signal_refuses_a_bad_shift():
+    for tau in ("1", None, np.nan, True):
+        with pytest.raises(ValueError, match="tau must be a finite real number"):
+            shift_signal(SLOW, tau)
+
+
+def test_the_restart_period_used_is_reported():
+    assert Supervisor(PLANT, GAINS, restart=0.25).restart == pytest.approx(0.2)
+
+
+def test_an_estimate_drives_the_decisions_only():
+    prep = Supervisor(PLANT, GAINS).prepare(TWO, 100.0)
+    same = Supervisor(PLANT, GAINS).prepare(TWO, 100.0, estimate=TWO)
+    np.testing.assert_array_equal(prep.E, same.E)
+    # an estimate that is the fast tone throughout: the law picks the HF gain from the start,
+    # while the plant still runs under d (its fixed runs are d's)
+    fast = Sinusoids([1.0], [12.0])
+    wrong = Supervisor(PLANT, GAINS).prepare(TWO, 100.0, estimate=fast)
+    assert wrong.fixed(0) == prep.fixed(0)
+    a, b = wrong.run(warmup=1.0), prep.run(warmup=1.0)
+    assert a.sequence.tolist() == [0, 1] and a.switch_times[0] < 2.0
+    assert b.sequence[-1] == 1 and b.switch_times[-1] > 40.0     # the exact estimate: at the break
+    with pytest.raises(TypeError, match="estimate must be an fdsc.Sinusoids or fdsc.Piecewise"):
+        Supervisor(PLANT, GAINS).prepare(TWO, 100.0, estimate=[1.0])

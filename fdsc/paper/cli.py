@@ -10,6 +10,7 @@ python -m fdsc cold-times [--book DIR] [--out FILE]
                                      (default: book/data/cold_times.json, which the book's
                                      environment page shows); takes many minutes
 python -m fdsc disturbance-law [--n N] [--workers W] [--scheduler ADDRESS] [--out FILE]
+                               [--robustness-only]
                                      the full non-stationary study of the law on the
                                      disturbance estimate (N draws per example, default 500),
                                      on W processes or a Dask scheduler, written to FILE
@@ -164,7 +165,8 @@ def cold_times_command(argv=None):
 
 
 def disturbance_law_command(argv=None):
-    """``disturbance-law [--n N] [--workers W] [--scheduler ADDRESS] [--out FILE]``: the full
+    """``disturbance-law [--n N] [--workers W] [--scheduler ADDRESS] [--out FILE]
+    [--robustness-only]``: the full
     study of :mod:`fdsc.paper.disturbance_law` (:func:`~fdsc.paper.disturbance_law.full_study`).
 
     Parameters
@@ -180,7 +182,7 @@ def disturbance_law_command(argv=None):
     import argparse
     from concurrent.futures import ProcessPoolExecutor
 
-    from .disturbance_law import FULL_FILE, N_FULL, full_study
+    from .disturbance_law import FULL_FILE, N_FULL, full_study, robustness
 
     parser = argparse.ArgumentParser(prog="python -m fdsc disturbance-law",
                                      description="the full study of the law on the disturbance estimate")
@@ -189,20 +191,33 @@ def disturbance_law_command(argv=None):
     parser.add_argument("--scheduler", default=None,
                         help="address of a Dask scheduler (instead of processes)")
     parser.add_argument("--out", type=Path, default=FULL_FILE)
+    parser.add_argument("--robustness-only", action="store_true",
+                        help="add the robustness study to an existing --out file instead of rerunning")
     args = parser.parse_args(sys.argv[2:] if argv is None else argv)
     if args.n < 2:
         parser.error(f"--n must be at least 2, but found {args.n}")
     if args.workers < 1:
         parser.error(f"--workers must be at least 1, but found {args.workers}")
     start = time.perf_counter()
+
+    def run(executor):
+        if not args.robustness_only:
+            return full_study(args.n, executor=executor, out=args.out)
+        if not args.out.is_file():
+            parser.error(f"--robustness-only needs the full study in {args.out}, which does not exist")
+        result = json.loads(args.out.read_text())
+        result["robustness"] = robustness(result, executor=executor)
+        args.out.write_text(json.dumps(result, indent=1))
+        return result
+
     if args.scheduler:
         from dask.distributed import Client
 
         with Client(args.scheduler) as client:
-            result = full_study(args.n, executor=client, out=args.out)
+            result = run(client)
     else:
         with ProcessPoolExecutor(args.workers) as pool:
-            result = full_study(args.n, executor=pool, out=args.out)
+            result = run(pool)
     for example in ("aircraft", "generic"):
         r = result[example]
         print(f"{example}: median {r['median_ratio_vs_fixed_in_advance']:.3f}x {r['fixed_in_advance']}, "

@@ -56,6 +56,8 @@ from .disturbance_law_draws import (
     front,
     law_run,
     lqr,
+    robust_result,
+    step_check,
 )
 from .examples import beats
 from .results import RecordPart, entry
@@ -64,7 +66,8 @@ __all__ = ["SEED", "N_RECORD", "N_FULL", "LAMBDAS", "HYSTERESES", "DECIDE_EVERY"
            "NOISE_SHARE", "NOISE_TONES", "HEADROOM_MIN", "FULL_FILE", "IDEAL_PAIR", "FRONT_FRACTIONS",
            "FRONT_MAXITER", "Draw", "draw", "front", "candidates", "lqr", "certificate", "draw_result",
            "Study", "study", "rho_t_family", "record_part", "full_study", "load_full", "LawRun",
-           "law_run", "direct_realization"]
+           "law_run", "direct_realization", "N_ROBUST", "ROBUST_SNR_DB", "robustness",
+           "step_check"]
 
 #: Draws per example in the record (half train, half test) and in the full study.
 N_RECORD, N_FULL = 12, 500
@@ -73,6 +76,8 @@ FULL_FILE = Path("book") / "data" / "disturbance_law_full.json"
 #: The oracle's least relative gain over the fixed gain chosen in advance for a draw to count
 #: in the median share of the oracle's gain that the law realizes.
 HEADROOM_MIN = 0.01
+#: Test draws per example and SNRs (dB) of the robustness study of the estimate.
+N_ROBUST, ROBUST_SNR_DB = 40, (20.0, 10.0, 0.0)
 
 
 @dataclass(frozen=True)
@@ -328,10 +333,55 @@ def full_study(n: int = N_FULL, *, seed: int = SEED, executor=None, out=FULL_FIL
             "band_power_ratio_vs_fixed_in_advance": st.ratio_vs_fixed_in_advance(
                 st.best_of("band_power")).tolist(),
             "band_power_law": st.best_of("band_power")}
+    result["robustness"] = robustness(result, n=min(N_ROBUST, n - n // 2), executor=executor)
     if out is not None:
         Path(out).parent.mkdir(parents=True, exist_ok=True)
         Path(out).write_text(json.dumps(result, indent=1))
     return result
+
+
+def robustness(full: dict, *, n: int = N_ROBUST, snrs=ROBUST_SNR_DB, executor=None) -> dict:
+    """The law chosen in the full study on its first ``n`` test draws per example, deciding on
+    an estimate with measurement noise at each SNR (:func:`robust_result`).
+
+    Parameters
+    ----------
+    full : dict
+        The full study (:func:`full_study`).
+    n : int, optional
+        Test draws per example.
+    snrs : sequence of float, optional
+        SNRs of the estimate in dB.
+    executor : concurrent.futures.Executor or dask.distributed.Client, optional
+
+    Returns
+    -------
+    dict
+        ``{example: {"draws": n, "exact_median", "snr_db": {snr: {"median", "win_rate",
+        "switches_ratio"}}}}``: medians of the energy over the fixed gain chosen in advance's,
+        win rates against it, and the noisy law's switches over the exact law's.
+    """
+    n = as_count("n", n, 1)
+    out = {}
+    for example in ("aircraft", "generic"):
+        r = full[example]
+        key = "{law}/{realization}/{forgetting:g}/{hysteresis:g}".format(**r["law"])
+        first = full["n"] // 2
+        args = [(example, first + i, key, r["fixed_in_advance"], float(snr), full["seed"])
+                for snr in snrs for i in range(n)]
+        res = _map(robust_result, args, executor)
+        per = {}
+        for k, snr in enumerate(snrs):
+            part = res[k * n:(k + 1) * n]
+            noisy = np.array([p["noisy"] for p in part])
+            per[str(float(snr))] = {
+                "median": float(np.median(noisy)), "win_rate": float(np.mean(beats(noisy))),
+                "switches_ratio": float(sum(p["switches_noisy"] for p in part)
+                                        / max(1, sum(p["switches_exact"] for p in part)))}
+        exact = np.array([p["exact"] for p in res[:n]])
+        out[example] = {"draws": n, "exact_median": float(np.median(exact)),
+                        "exact_win_rate": float(np.mean(beats(exact))), "snr_db": per}
+    return out
 
 
 def load_full(path=FULL_FILE):

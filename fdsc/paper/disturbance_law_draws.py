@@ -20,7 +20,8 @@ from .generic_example import generic_example
 
 __all__ = ["SEED", "LAMBDAS", "HYSTERESES", "DECIDE_EVERY", "RESTART", "NOISE_SHARE", "NOISE_TONES",
            "IDEAL_PAIR", "FRONT_FRACTIONS", "FRONT_MAXITER", "Draw", "draw", "front", "candidates",
-           "lqr", "certificate", "draw_result", "LawRun", "law_run", "direct_realization"]
+           "lqr", "certificate", "draw_result", "LawRun", "law_run", "direct_realization",
+           "ESTIMATE_NOISE_TONES", "noisy_estimate", "robust_result", "step_check"]
 
 SEED = 32
 #: The tuning grid (on the training half).
@@ -337,3 +338,130 @@ def direct_realization(example: str, index: int, law: str, seed: int = SEED) -> 
     copies = prep.with_K0(lqr(example)).run(forgetting=float(lam), hysteresis=float(h))
     return {"dwell": tau, "direct": direct.energy, "copies": copies.energy,
             "direct_switches": direct.switches, "copies_switches": copies.switches}
+
+
+#: Tones of the measurement noise on the estimate (a random-phase multisine with Rayleigh
+#: amplitudes, log-uniform over the tone ranges of both bands widened threefold).
+ESTIMATE_NOISE_TONES = 16
+
+
+def noisy_estimate(example, dr: Draw, snr_db: float, rng: np.random.Generator) -> fdsc.Piecewise:
+    """The disturbance estimate with measurement noise: ``d`` plus broadband noise of power
+    ``10^(−SNR/10)`` (each segment of ``d`` has power 1), present over the whole run.
+
+    Parameters
+    ----------
+    example : Example
+    dr : Draw
+    snr_db : float
+        Signal-to-noise ratio of the estimate in dB (power of d over power of the noise).
+    rng : numpy.random.Generator
+
+    Returns
+    -------
+    fdsc.Piecewise
+
+    Examples
+    --------
+    >>> ex = aircraft_example()
+    >>> dr = draw(ex, np.random.default_rng(0))
+    >>> w = noisy_estimate(ex, dr, 20.0, np.random.default_rng(1))
+    >>> round(w.parts[0].power() - dr.d.parts[0].power(), 3)       # uncorrelated tones: powers add
+    0.01
+    """
+    lo, hi = example.lf_tones[0] / 3.0, example.hf_tones[1] * 3.0
+    m = ESTIMATE_NOISE_TONES
+    w = np.exp(rng.uniform(np.log(lo), np.log(hi), m))
+    a = rng.rayleigh(1.0, m)
+    a = a * np.sqrt(10.0 ** (-snr_db / 10.0) / (0.5 * np.sum(a**2)))
+    nu = fdsc.Sinusoids(a, w, rng.uniform(0.0, 2 * np.pi, m))
+    breaks = list(dr.d.breaks)
+    parts = [p + nu for p in dr.d.parts]
+    if dr.horizon > breaks[-1]:
+        breaks.append(dr.horizon)
+        parts.append(nu)
+    return fdsc.Piecewise(breaks, parts)
+
+
+def robust_result(example: str, index: int, law: str, fixed_in_advance: str, snr_db: float,
+                  seed: int = SEED) -> dict:
+    """Draw ``index`` under a law that decides on a noisy estimate, against the same law on the
+    exact estimate.
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+    index : int
+    law : str
+        ``law/realization/λ/h``.
+    fixed_in_advance : str
+        The candidate the energies are divided by.
+    snr_db : float
+        SNR of the estimate (dB).
+    seed : int, optional
+        Of the draw; the noise's generator is seeded by ``[seed, index, 1]``.
+
+    Returns
+    -------
+    dict
+        ``{"noisy": ratio, "exact": ratio, "switches_noisy", "switches_exact"}``.
+    """
+    ex = _example(example)
+    dr = draw(ex, np.random.default_rng([seed, index]))
+    what = noisy_estimate(ex, dr, snr_db, np.random.default_rng([seed, index, 1]))
+    names, gains = candidates(example)
+    kind, real, lam, h = law.split("/")
+    K0 = lqr(example) if real == "copies" else None
+    if kind == "cost":
+        sup = fdsc.Supervisor(ex.plant, gains, decide_every=DECIDE_EVERY, restart=RESTART, K0=K0)
+    else:
+        lf, hf = names.index(IDEAL_PAIR[0]), names.index(IDEAL_PAIR[1])
+        sup = fdsc.Supervisor(ex.plant, [gains[lf], gains[hf]], law="band_power",
+                              bands=[ex.bands["LF"], ex.bands["HF"]], decide_every=DECIDE_EVERY,
+                              restart=RESTART, K0=K0)
+    exact = sup.prepare(dr.d, dr.horizon)
+    noisy = sup.prepare(dr.d, dr.horizon, estimate=what)
+    ref = exact.energy_of(ex.plant.closed_loop(gains[names.index(fixed_in_advance)]))
+    a = exact.run(forgetting=float(lam), hysteresis=float(h))
+    b = noisy.run(forgetting=float(lam), hysteresis=float(h))
+    return {"noisy": b.energy / ref, "exact": a.energy / ref, "switches_noisy": b.switches,
+            "switches_exact": a.switches}
+
+
+def step_check(example: str, index: int, law: str, dts=(1e-3, 5e-4), seed: int = SEED) -> dict:
+    """The law on one draw with its switched run stepped by the library's simulator at two steps,
+    against the exact run: the decisions must not depend on the step.
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+    index : int
+    law : str
+        ``law/realization/λ/h``.
+    dts : (float, float), optional
+        The steps (s), each dividing the decision interval and every break of the draw.
+    seed : int, optional
+
+    Returns
+    -------
+    dict
+        ``same_switches`` (bool: the three runs switch at the same instants), ``switches``,
+        ``energy_rel_diff`` (largest relative difference of the stepped energies from the exact
+        one).
+    """
+    ex = _example(example)
+    dr = draw(ex, np.random.default_rng([seed, index]))
+    names, gains = candidates(example)
+    kind, real, lam, h = law.split("/")
+    if kind != "cost":
+        lf, hf = names.index(IDEAL_PAIR[0]), names.index(IDEAL_PAIR[1])
+        gains = [gains[lf], gains[hf]]
+    opts = dict(law=kind, bands=[ex.bands["LF"], ex.bands["HF"]] if kind != "cost" else None,
+                forgetting=float(lam), hysteresis=float(h), decide_every=DECIDE_EVERY,
+                restart=RESTART, K0=lqr(example) if real == "copies" else None)
+    exact = fdsc.supervise(ex.plant, gains, dr.d, dr.horizon, **opts)
+    runs = [fdsc.supervise(ex.plant, gains, dr.d, dr.horizon, dt, **opts) for dt in dts]
+    same = all(np.array_equal(r.switch_times, exact.switch_times)
+               and np.array_equal(r.sequence, exact.sequence) for r in runs)
+    return {"same_switches": bool(same), "switches": exact.switches,
+            "energy_rel_diff": float(max(abs(r.energy / exact.energy - 1) for r in runs))}

@@ -29,7 +29,7 @@ def test_the_draws_follow_the_stated_distribution(example):
             share = part.dominance(ex.bands[dom])
             assert 0.8 - 1e-12 <= share <= 1.0
             assert part.frequencies.size == 2 * (dl.NOISE_TONES if noise else 3)
-        assert dr.changes == sum(a != b for a, b in zip(dr.dominant, dr.dominant[1:]))
+        assert dr.changes == sum(a != b for a, b in zip(dr.dominant[:-1], dr.dominant[1:], strict=True))
 
 
 def test_the_segments_are_mixed_as_stated():
@@ -52,9 +52,10 @@ def _fake(index, fixed, runs, oracle):
 def test_the_choices_are_made_on_the_training_half_only():
     # training half: B is the better fixed gain and law x the better law; the test half says
     # the opposite, which must not change the choices
-    train = [_fake(i, {"A": 2.0, "B": 1.0}, {"cost/copies/1/0.1": (0.5, 1, False), "band_power/copies/1/0.1": (0.9, 1, False)}, 0.4)
+    x, y = "cost/copies/1/0.1", "band_power/copies/1/0.1"
+    train = [_fake(i, {"A": 2.0, "B": 1.0}, {x: (0.5, 1, False), y: (0.9, 1, False)}, 0.4)
              for i in range(3)]
-    test = [_fake(i, {"A": 1.0, "B": 4.0}, {"cost/copies/1/0.1": (2.0, 3, False), "band_power/copies/1/0.1": (0.1, 1, True)}, 1.0)
+    test = [_fake(i, {"A": 1.0, "B": 4.0}, {x: (2.0, 3, False), y: (0.1, 1, True)}, 1.0)
             for i in range(3, 6)]
     st = dl._choose("aircraft", train + test, 1)
     assert st.fixed_in_advance == "B" and st.law == "cost/copies/1/0.1"
@@ -96,6 +97,6 @@ def test_the_record_entries_carry_every_field():
         assert s["draws_test"] == dl.N_RECORD // 2 and s["certified"] is True and s["diverged"] == 0
         assert s["law"]["realization"] == "copies"
         assert 0.0 <= s["win_rate_vs_fixed_in_advance"] <= 1.0
-        assert s["median_ratio_vs_best_fixed_per_draw"] <= s["median_ratio_vs_fixed_in_advance"] * (1 + 1e-12) \
-            or s["fixed_in_advance"] != "PassC-LF"
+        # the least-energy fixed gain of each draw is at most the one chosen in advance
+        assert s["median_ratio_vs_best_fixed_per_draw"] >= s["median_ratio_vs_fixed_in_advance"] * (1 - 1e-12)
         assert len(s["rho_t_ratio_vs_best_fixed"]) == (11 if example == "aircraft" else 21)
