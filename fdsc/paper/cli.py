@@ -216,7 +216,13 @@ def disturbance_law_command(argv=None):
         with Client(args.scheduler) as client:
             result = run(client)
     else:
-        with ProcessPoolExecutor(args.workers) as pool:
+        # one BLAS thread per worker: the step tables are small matrix exponentials, and several
+        # workers each spinning several BLAS threads on the same cores run many times slower
+        import multiprocessing
+
+        for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+            os.environ.setdefault(var, "1")
+        with ProcessPoolExecutor(args.workers, mp_context=multiprocessing.get_context("spawn")) as pool:
             result = run(pool)
     for example in ("aircraft", "generic"):
         r = result[example]
