@@ -190,7 +190,7 @@ def disturbance_law_command(argv=None):
     parser.add_argument("--workers", type=int, default=os.cpu_count() or 1, help="processes")
     parser.add_argument("--scheduler", default=None,
                         help="address of a Dask scheduler (instead of processes)")
-    parser.add_argument("--out", type=Path, default=FULL_FILE)
+    parser.add_argument("--out", type=Path, default=Path(__file__).resolve().parents[2] / FULL_FILE)
     parser.add_argument("--robustness-only", action="store_true",
                         help="add the robustness study to an existing --out file instead of rerunning")
     args = parser.parse_args(sys.argv[2:] if argv is None else argv)

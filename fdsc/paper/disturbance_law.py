@@ -384,19 +384,21 @@ def robustness(full: dict, *, n: int = N_ROBUST, snrs=ROBUST_SNR_DB, executor=No
     return out
 
 
-def load_full(path=FULL_FILE):
+def load_full(path=None):
     """The full study written by :func:`full_study`.
 
     Parameters
     ----------
     path : path, optional
+        Default :data:`FULL_FILE` in the repository this package lies in (whatever the working
+        directory).
 
     Returns
     -------
     dict or None
-        None if the file is absent.
+        None if the file is absent (outside a checkout of the repository).
     """
-    path = Path(path)
+    path = Path(__file__).resolve().parents[2] / FULL_FILE if path is None else Path(path)
     if not path.is_file():
         return None
     return json.loads(path.read_text())

@@ -31,8 +31,8 @@ STYLES = {
     "front 2": ("#3182bd", "o", "--"),
     "front 3": ("#6baed6", "o", "--"),
     "law on ŵ": ("darkgreen", "o", "-"),
-    "band-power law": ("tab:cyan", "d", "--"),
-    "clairvoyant oracle": ("k", "*", ":"),
+    "band-power law": ("#1b9e77", "d", "--"),
+    "clairvoyant oracle": ("#7570b3", "*", ":"),
 }
 
 #: A printed gain → the controller it is (and is drawn as).

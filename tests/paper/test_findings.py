@@ -67,8 +67,10 @@ def test_the_law_sentence_says_whether_it_pays_and_against_what():
     flat = dict(pays, median_ratio_vs_fixed_in_advance=0.995, oracle_median_ratio_vs_fixed_in_advance=0.998,
                 fixed_in_advance="PassC-LF")
     text = law_sentence({"generic": pays, "aircraft": flat})
+    from fdsc.paper.prose import pct
+
     assert text.startswith("on the generic example it pays: median energy ×0.600 that of the fixed gain "
-                           "chosen in advance (front 1), less on 93% of 250 test draws")
+                           f"chosen in advance (front 1), less on {pct(0.93)} of 250 test draws")
     assert "on the aircraft example it cannot pay much: median ×0.995" in text
     assert "clairvoyant per-segment oracle reaches only ×0.998" in text
 
