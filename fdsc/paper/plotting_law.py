@@ -84,6 +84,9 @@ def plot_law_cdf(full, example, ax=None):
                 ls=st["linestyle"], lw=1.4, label=name)
     ax.axvline(1.0, color="0.3", lw=0.8)
     ax.set_xscale("log")
+    ticks = [0.25, 0.5, 1.0, 2.0, 4.0]
+    ax.set_xticks(ticks, [f"{t:g}" for t in ticks])
+    ax.minorticks_off()
     ax.set_xlabel(f"energy / energy of {adv} (chosen in advance) [-]")
     ax.set_ylabel("share of test draws [-]")
     ax.set_ylim(0, 1)
@@ -116,12 +119,11 @@ def plot_front(front, peaks, ax=None):
     for k, (name, (lf, hf)) in enumerate(peaks.items()):
         st = style(name, k)
         ax.plot(lf, hf, marker=st["marker"], color=st["color"], ls="none", label=name)
-    ax.set_xscale("log")
-    ax.set_yscale("log")
     ax.set_xlabel(r"LF band peak $\gamma_{LF}$ [-]")
     ax.set_ylabel(r"HF band peak $\gamma_{HF}$ [-]")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7, loc="upper right")
+    ax.margins(0.15)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=6, loc="best")
     return ax
 
 
