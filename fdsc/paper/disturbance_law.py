@@ -290,7 +290,7 @@ def rho_t_family(example: str, law: str) -> dict:
         prep = sup.prepare(d, horizon)
         r = prep.run(forgetting=float(lam), hysteresis=float(h))
         base = fdsc.Supervisor(ex.plant, gains).prepare(d, horizon)
-        best = min(base.fixed(names.index(k)) for k in comparators(example))
+        best = min(base.energy_of(ex.plant.closed_loop(ex.gains[k])) for k in comparators(example))
         out["rho_t"].append(float(p))
         out["ratio_vs_best_fixed"].append(r.energy / best)
     return out
