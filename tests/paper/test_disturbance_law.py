@@ -75,7 +75,10 @@ def test_a_draw_is_the_same_on_two_runs_and_its_baselines_are_consistent():
     b = dl.draw_result("generic", 3)
     assert a == b
     names = dl.candidates("generic")[0]
-    assert set(a["fixed"]) == set(names)
+    # the open loop (a resonance of time constant ~50 s) is a fixed baseline, not a candidate
+    assert "open loop" not in names and set(a["fixed"]) == set(names) | {"open loop"}
+    air = dl.candidates("aircraft")[0]
+    assert "open loop" in air and "PassC-HF" not in air        # PassC-HF: a pole at −0.0165 /s
     # the clairvoyant oracle picks, on each piece, the least energy among the candidates: never
     # worse than holding the best of them when the pieces are taken one by one from the same
     # state, and here (every piece long) below the best fixed gain
