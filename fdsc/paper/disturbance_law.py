@@ -53,6 +53,7 @@ from .disturbance_law_draws import (
     direct_realization,
     draw,
     draw_result,
+    fixed_gain,
     front,
     law_run,
     lqr,
@@ -272,7 +273,7 @@ def rho_t_family(example: str, law: str) -> dict:
 
     ex = _example(example)
     names, gains = candidates(example)
-    lf, hf = names.index(IDEAL_PAIR[0]), names.index(IDEAL_PAIR[1])
+    pair_gains = [fixed_gain(example, n) for n in IDEAL_PAIR]
     kind, real, lam, h = law.split("/")
     lo, hi = paper_data("simulation")["rho_t_range"]["value"]
     grid = np.linspace(lo, hi, 11) if example == "aircraft" else RHO_T
@@ -284,7 +285,7 @@ def rho_t_family(example: str, law: str) -> dict:
             sup = fdsc.Supervisor(ex.plant, gains, decide_every=DECIDE_EVERY, restart=RESTART,
                                   K0=lqr(example) if real == "copies" else None)
         else:
-            sup = fdsc.Supervisor(ex.plant, [gains[lf], gains[hf]], law="band_power",
+            sup = fdsc.Supervisor(ex.plant, pair_gains, law="band_power",
                                   bands=[ex.bands["LF"], ex.bands["HF"]], decide_every=DECIDE_EVERY,
                                   restart=RESTART, K0=lqr(example) if real == "copies" else None)
         prep = sup.prepare(d, horizon)

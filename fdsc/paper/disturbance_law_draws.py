@@ -262,15 +262,16 @@ def draw_result(example: str, index: int, seed: int = SEED) -> dict:
         if n not in fixed:                     # a baseline the law does not switch to
             fixed[n] = prep.energy_of(ex.closed_loop(n))
     oracle, _choice = prep.clairvoyant()
-    lf, hf = names.index(IDEAL_PAIR[0]), names.index(IDEAL_PAIR[1])
+    pair_gains = [fixed_gain(example, n) for n in IDEAL_PAIR]
     dom = {}
     for (t0, _t1, *_r), k in zip(prep.grid.pieces, range(len(prep.grid.pieces)), strict=True):
         j = int(np.searchsorted(dr.d.breaks, t0 + 1e-9, side="right") - 1)
         dom[k] = dr.dominant[j] if 0 <= j < len(dr.dominant) else "LF"
-    ideal = prep.segment_law([lf if dom[k] == "LF" else hf for k in range(len(prep.grid.pieces))])
-    pair = fdsc.Supervisor(ex.plant, [gains[lf], gains[hf]], law="band_power",
+    pair = fdsc.Supervisor(ex.plant, pair_gains, law="band_power",
                            bands=[ex.bands["LF"], ex.bands["HF"]], decide_every=DECIDE_EVERY,
                            restart=RESTART).prepare(dr.d, dr.horizon)
+    # the ideal segment law: PassC-LF on LF-dominated pieces, PassC-HF on HF ones (the pair's loops)
+    ideal = pair.segment_law([0 if dom[k] == "LF" else 1 for k in range(len(pair.grid.pieces))])
     preps = {("cost", "copies"): prep.with_K0(K0), ("band_power", "copies"): pair.with_K0(K0)}
     runs = {}
     for law, real, lam, h in _configs(example):
@@ -279,6 +280,7 @@ def draw_result(example: str, index: int, seed: int = SEED) -> dict:
     return {"index": index, "horizon": dr.horizon, "changes": dr.changes, "segments": len(dr.dominant),
             "fixed": fixed, "oracle": oracle, "ideal": ideal, "runs": runs,
             "input_energy": prep.input_energy}
+
 
 @dataclass(frozen=True)
 class LawRun:
@@ -327,8 +329,8 @@ def law_run(example: str, index: int, law: str, fixed_in_advance: str, seed: int
                               K0=lqr(example) if real == "copies" else None)
         shown = names
     else:
-        lf, hf = names.index(IDEAL_PAIR[0]), names.index(IDEAL_PAIR[1])
-        sup = fdsc.Supervisor(ex.plant, [gains[lf], gains[hf]], law="band_power",
+        pair_gains = [fixed_gain(example, n) for n in IDEAL_PAIR]
+        sup = fdsc.Supervisor(ex.plant, pair_gains, law="band_power",
                               bands=[ex.bands["LF"], ex.bands["HF"]], decide_every=DECIDE_EVERY,
                               restart=RESTART, K0=lqr(example) if real == "copies" else None)
         shown = IDEAL_PAIR
@@ -449,8 +451,8 @@ def robust_result(example: str, index: int, law: str, fixed_in_advance: str, snr
     if kind == "cost":
         sup = fdsc.Supervisor(ex.plant, gains, decide_every=DECIDE_EVERY, restart=RESTART, K0=K0)
     else:
-        lf, hf = names.index(IDEAL_PAIR[0]), names.index(IDEAL_PAIR[1])
-        sup = fdsc.Supervisor(ex.plant, [gains[lf], gains[hf]], law="band_power",
+        pair_gains = [fixed_gain(example, n) for n in IDEAL_PAIR]
+        sup = fdsc.Supervisor(ex.plant, pair_gains, law="band_power",
                               bands=[ex.bands["LF"], ex.bands["HF"]], decide_every=DECIDE_EVERY,
                               restart=RESTART, K0=K0)
     exact = sup.prepare(dr.d, dr.horizon)
@@ -488,8 +490,8 @@ def step_check(example: str, index: int, law: str, dts=(1e-3, 5e-4), seed: int =
     names, gains = candidates(example)
     kind, real, lam, h = law.split("/")
     if kind != "cost":
-        lf, hf = names.index(IDEAL_PAIR[0]), names.index(IDEAL_PAIR[1])
-        gains = [gains[lf], gains[hf]]
+        pair_gains = [fixed_gain(example, n) for n in IDEAL_PAIR]
+        gains = pair_gains
     opts = dict(law=kind, bands=[ex.bands["LF"], ex.bands["HF"]] if kind != "cost" else None,
                 forgetting=float(lam), hysteresis=float(h), decide_every=DECIDE_EVERY,
                 restart=RESTART, K0=lqr(example) if real == "copies" else None)
