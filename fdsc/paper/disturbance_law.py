@@ -29,8 +29,6 @@ from pathlib import Path
 
 import numpy as np
 
-import fdsc
-
 from .._validation import as_count
 from .cache import cached
 from .comparators import comparators
@@ -53,9 +51,9 @@ from .disturbance_law_draws import (
     direct_realization,
     draw,
     draw_result,
-    fixed_gain,
     front,
     law_run,
+    law_supervisor,
     lqr,
     robust_result,
     step_check,
@@ -272,26 +270,16 @@ def rho_t_family(example: str, law: str) -> dict:
     from .nonstationary_sweeps import family_signal
 
     ex = _example(example)
-    names, gains = candidates(example)
-    pair_gains = [fixed_gain(example, n) for n in IDEAL_PAIR]
-    kind, real, lam, h = law.split("/")
+    sup, _names, lam, h = law_supervisor(example, law)
     lo, hi = paper_data("simulation")["rho_t_range"]["value"]
     grid = np.linspace(lo, hi, 11) if example == "aircraft" else RHO_T
     out = {"rho_t": [], "ratio_vs_best_fixed": []}
     for p in grid:
         d, horizon = family_signal("piecewise", p) if example == "aircraft" else piecewise_disturbance(p)
         horizon = math.ceil(horizon / DECIDE_EVERY - 1e-9) * DECIDE_EVERY
-        if kind == "cost":
-            sup = fdsc.Supervisor(ex.plant, gains, decide_every=DECIDE_EVERY, restart=RESTART,
-                                  K0=lqr(example) if real == "copies" else None)
-        else:
-            sup = fdsc.Supervisor(ex.plant, pair_gains, law="band_power",
-                                  bands=[ex.bands["LF"], ex.bands["HF"]], decide_every=DECIDE_EVERY,
-                                  restart=RESTART, K0=lqr(example) if real == "copies" else None)
         prep = sup.prepare(d, horizon)
-        r = prep.run(forgetting=float(lam), hysteresis=float(h))
-        base = fdsc.Supervisor(ex.plant, gains).prepare(d, horizon)
-        best = min(base.energy_of(ex.plant.closed_loop(ex.gains[k])) for k in comparators(example))
+        r = prep.run(forgetting=lam, hysteresis=h)
+        best = min(prep.energy_of(ex.closed_loop(k)) for k in comparators(example))
         out["rho_t"].append(float(p))
         out["ratio_vs_best_fixed"].append(r.energy / best)
     return out

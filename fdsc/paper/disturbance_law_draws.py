@@ -21,7 +21,8 @@ from .generic_example import generic_example
 __all__ = ["SEED", "LAMBDAS", "HYSTERESES", "DECIDE_EVERY", "RESTART", "NOISE_SHARE", "NOISE_TONES",
            "IDEAL_PAIR", "FRONT_FRACTIONS", "FRONT_MAXITER", "Draw", "draw", "front", "candidates",
            "lqr", "certificate", "draw_result", "fixed_gain", "LawRun", "law_run", "direct_realization",
-           "ESTIMATE_NOISE_TONES", "noisy_estimate", "robust_result", "step_check"]
+           "ESTIMATE_NOISE_TONES", "noisy_estimate", "robust_result", "step_check",
+           "law_supervisor"]
 
 SEED = 32
 #: The tuning grid (on the training half).
@@ -282,6 +283,36 @@ def draw_result(example: str, index: int, seed: int = SEED) -> dict:
             "input_energy": prep.input_energy}
 
 
+def law_supervisor(example: str, law: str) -> tuple:
+    """The supervisor of a setting ``law/realization/λ/h``.
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+    law : str
+
+    Returns
+    -------
+    sup : fdsc.Supervisor
+        The cost law over the candidates, or the band-power law over the ideal pair.
+    names : tuple of str
+        Its gains' names.
+    forgetting, hysteresis : float
+    """
+    ex = _example(example)
+    kind, real, lam, h = law.split("/")
+    K0 = lqr(example) if real == "copies" else None
+    if kind == "cost":
+        names, gains = candidates(example)
+        sup = fdsc.Supervisor(ex.plant, gains, decide_every=DECIDE_EVERY, restart=RESTART, K0=K0)
+    else:
+        names = IDEAL_PAIR
+        sup = fdsc.Supervisor(ex.plant, [fixed_gain(example, n) for n in names], law="band_power",
+                              bands=[ex.bands["LF"], ex.bands["HF"]], decide_every=DECIDE_EVERY,
+                              restart=RESTART, K0=K0)
+    return sup, tuple(names), float(lam), float(h)
+
+
 @dataclass(frozen=True)
 class LawRun:
     """One draw under the chosen law, for the chapter's figure (see :func:`law_run`).
@@ -322,20 +353,9 @@ def law_run(example: str, index: int, law: str, fixed_in_advance: str, seed: int
     """
     ex = _example(example)
     dr = draw(ex, np.random.default_rng([seed, index]))
-    names, gains = candidates(example)
-    kind, real, lam, h = law.split("/")
-    if kind == "cost":
-        sup = fdsc.Supervisor(ex.plant, gains, decide_every=DECIDE_EVERY, restart=RESTART,
-                              K0=lqr(example) if real == "copies" else None)
-        shown = names
-    else:
-        pair_gains = [fixed_gain(example, n) for n in IDEAL_PAIR]
-        sup = fdsc.Supervisor(ex.plant, pair_gains, law="band_power",
-                              bands=[ex.bands["LF"], ex.bands["HF"]], decide_every=DECIDE_EVERY,
-                              restart=RESTART, K0=lqr(example) if real == "copies" else None)
-        shown = IDEAL_PAIR
+    sup, shown, lam, h = law_supervisor(example, law)
     prep = sup.prepare(dr.d, dr.horizon)
-    r = prep.run(forgetting=float(lam), hysteresis=float(h))
+    r = prep.run(forgetting=lam, hysteresis=h)
     ref = prep.energy_of(ex.plant.closed_loop(fixed_gain(example, fixed_in_advance)))
     return LawRun(dr, tuple(shown), r, r.energy / ref)
 
@@ -445,21 +465,12 @@ def robust_result(example: str, index: int, law: str, fixed_in_advance: str, snr
     ex = _example(example)
     dr = draw(ex, np.random.default_rng([seed, index]))
     what = noisy_estimate(ex, dr, snr_db, np.random.default_rng([seed, index, 1]))
-    names, gains = candidates(example)
-    kind, real, lam, h = law.split("/")
-    K0 = lqr(example) if real == "copies" else None
-    if kind == "cost":
-        sup = fdsc.Supervisor(ex.plant, gains, decide_every=DECIDE_EVERY, restart=RESTART, K0=K0)
-    else:
-        pair_gains = [fixed_gain(example, n) for n in IDEAL_PAIR]
-        sup = fdsc.Supervisor(ex.plant, pair_gains, law="band_power",
-                              bands=[ex.bands["LF"], ex.bands["HF"]], decide_every=DECIDE_EVERY,
-                              restart=RESTART, K0=K0)
+    sup, _shown, lam, h = law_supervisor(example, law)
     exact = sup.prepare(dr.d, dr.horizon)
     noisy = sup.prepare(dr.d, dr.horizon, estimate=what)
     ref = exact.energy_of(ex.plant.closed_loop(fixed_gain(example, fixed_in_advance)))
-    a = exact.run(forgetting=float(lam), hysteresis=float(h))
-    b = noisy.run(forgetting=float(lam), hysteresis=float(h))
+    a = exact.run(forgetting=lam, hysteresis=h)
+    b = noisy.run(forgetting=lam, hysteresis=h)
     return {"noisy": b.energy / ref, "exact": a.energy / ref, "switches_noisy": b.switches,
             "switches_exact": a.switches}
 
