@@ -49,6 +49,8 @@ _EXPORTS = {
     "supervisor": ("LAWS", "Prepared", "SupervisedRun", "Supervisor", "band_filter", "lqr_gain",
                    "shift_signal", "supervise"),
     "gc_dwell": ("DwellCertificate", "geromel_colaneri_dwell"),
+    "min_switching": ("MinSwitchingCertificate", "min_switching"),
+    "supervise_batch": ("SupervisedCase", "supervise_batch"),
     "switching": ("Theorem1Result", "certify_q", "design_q"),
     "synthesis": ("SynthesisResult", "optimize_gain", "synthesize", "synthesize_hinf"),
     "three_mode": ("ScoreCertificate", "certify_scores", "design_scores"),
@@ -129,6 +131,8 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers and editors
     )
     from .frequency import BandPeak, band_peak, freqresp, sigma_max, steady_state_gain, steady_state_gains
     from .gc_dwell import DwellCertificate, geromel_colaneri_dwell
+    from .min_switching import MinSwitchingCertificate, min_switching
+    from .supervise_batch import SupervisedCase, supervise_batch
     from .lmi import GKYPResult, gkyp_certify, gkyp_gamma
     from .lyapunov_jumps import (
         SwitchingCertificate,
@@ -180,7 +184,8 @@ __all__ = [
     "MultibandResult", "synthesize_multiband", "FrontPoint", "ParetoFront", "pareto_front",
     # a switching law on the disturbance estimate
     "Supervisor", "Prepared", "SupervisedRun", "supervise", "LAWS", "band_filter", "lqr_gain",
-    "shift_signal", "DwellCertificate", "geromel_colaneri_dwell",
+    "shift_signal", "DwellCertificate", "geromel_colaneri_dwell", "MinSwitchingCertificate",
+    "min_switching", "SupervisedCase", "supervise_batch",
     # FD-EEF / FD-EPF
     "PowerSplit", "instantaneous_power", "fdeef", "average_power", "steady_state_power",
     "fdeef_autonomous", "fdeef_parseval_autonomous",

@@ -328,6 +328,56 @@ class FDSC:
                         law_Q=list(self.Q), law=law, sigma0=sigma0, rule=rule, kernel=kernel,
                         **options)
 
+    def supervisor(self, law: str = "band_power", *, K0="lqr", decide_every: float = 0.1,
+                   restart: float = 20.0):
+        """This design's gains switched by a law on the disturbance estimate instead of the
+        printed law (:class:`~fdsc.supervisor.Supervisor`).
+
+        Parameters
+        ----------
+        law : {"band_power", "cost"}, optional
+            ``"band_power"`` (default): the gain of the band of :attr:`bands` that holds most
+            of the estimate's recent power, the paper's frequency selectiveness applied to the
+            disturbance; ``"cost"``: the predictive-cost supervisor over the design's gains.
+        K0 : "lqr", None or (m_u, n) array_like, optional
+            The realization: ``"lqr"`` (default) through copies around the plant's LQR gain
+            (:func:`~fdsc.supervisor.lqr_gain`), None direct (``u = K_σ x``), or a gain.
+        decide_every, restart : float, optional
+            See :class:`~fdsc.supervisor.Supervisor`.
+
+        Returns
+        -------
+        Supervisor
+            Run it with ``.run`` (exact, on the exact estimate), ``.run_measured`` (on sampled
+            measurements) or :func:`fdsc.supervise_batch`.
+
+        Raises
+        ------
+        ValueError
+            As :class:`~fdsc.supervisor.Supervisor` raises them (e.g. a plant with more than one
+            disturbance input, or an unknown law).
+
+        Examples
+        --------
+        >>> from fdsc import Band, Piecewise, Plant, Sinusoids
+        >>> plant = Plant([[0.0, 1.0], [-4.0, -0.4]], [[0.0], [1.0]], [[0.0], [1.0]],
+        ...               [[1.0, 0.0], [0.0, 0.0]], [[0.0], [0.0]], [[0.0], [0.1]])
+        >>> ctrl = FDSC.from_gains(plant, [[[-21.85, -22.27]], [[0.495, -1.473]]],
+        ...                        [Band.lf(2.0), Band.hf(8.0)], in_band=1)
+        >>> d = Piecewise([0.0, 60.0, 200.0], [Sinusoids([1.0], [0.2]), Sinusoids([1.0], [12.0])])
+        >>> ctrl.supervisor().run(d, 120.0, warmup=5.0).sequence.tolist()
+        [0, 1]
+        """
+        from .supervisor import Supervisor, lqr_gain
+
+        if isinstance(K0, str):
+            if K0 != "lqr":
+                raise ValueError(f"K0 must be 'lqr', None or a gain, but found {K0!r}")
+            K0 = lqr_gain(self.plant)
+        bands = list(self.bands) if law == "band_power" else None
+        return Supervisor(self.plant, list(self.gains), law=law, bands=bands, decide_every=decide_every,
+                          restart=restart, K0=K0)
+
     def case(self, d, horizon: float, dt: float, *, x0: ArrayLike | None = None,
              law: str = "previous", sigma0: int = 0, rule: SwitchRule = PRINTED,
              label: object = None) -> Case:

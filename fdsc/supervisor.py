@@ -284,6 +284,9 @@ def band_filter(band):
 
 
 LAWS = ("cost", "band_power")
+#: A stepped run (``supervise(dt=...)``) warns when a loop's fastest mode λ has |λ| dt above this:
+#: the transients at the switches are then shorter than a step.
+STIFF_STEP = 10.0
 #: The band edges (rad/s) a monitoring filter resolves: [1 / MAX_FILTER_EDGE, MAX_FILTER_EDGE].
 MAX_FILTER_EDGE = 1e6
 
@@ -442,6 +445,139 @@ class Supervisor:
         SupervisedRun
         """
         return self.prepare(d, horizon, x0=x0).run(**law)
+
+    def run_measured(self, d, horizon: float, dt: float, *, derivative: str = "exact", true_A=None,
+                     x0=None, forgetting: float = 0.5, hysteresis: float = 0.2, warmup: float = 0.0,
+                     min_dwell: float = 0.0, sigma0: int = 0) -> SupervisedRun:
+        """Run the law as a controller would: ŵ formed at every step from the measured state.
+
+        At ``t_k = k dt`` the controller reads ``x_k`` and ``ẋ_k``, forms
+        ``ŵ_k = B1⁺ (ẋ_k − A x_k − B2 u_k)`` with the plant's ``A`` (its model), and holds ŵ_k
+        until the next sample; the monitors and the copies step under the held ŵ, the plant
+        under the true disturbance, all exactly between samples, and the law decides every
+        ``decide_every`` as :meth:`Prepared.run` does. When the estimate's error depends on the
+        state (a wrong model, a finite-difference derivative), the decisions depend on the run,
+        so nothing can be prepared: each call runs the whole loop (:mod:`fdsc._measured`).
+
+        Parameters
+        ----------
+        d : Sinusoids or Piecewise
+            The disturbance (scalar); every break a multiple of ``dt``, every tone below the
+            Nyquist frequency ``π / dt``.
+        horizon : float
+            Run length (s), a whole number of decision intervals.
+        dt : float
+            The sampling step (s); ``decide_every`` must be a whole number of steps.
+        derivative : {"exact", "backward"}, optional
+            ``"exact"``: the plant's true derivative at the sample; ``"backward"``:
+            ``(x_k − x_{k−1}) / dt``.
+        true_A : (n, n) array_like, optional
+            The state matrix of the plant that is run, if not the model's (e.g. ``1.1 A`` for
+            a 10 % model error); the estimate, the copies and the monitors keep the model's.
+        x0 : (n,) array_like, optional
+            Initial state of the plant (default 0); monitors and copies start from rest.
+        forgetting, hysteresis, warmup, min_dwell, sigma0
+            See :meth:`Prepared.run`.
+
+        Returns
+        -------
+        SupervisedRun
+            With ``dt`` set and the monitoring signals the law read; the energy is integrated
+            exactly along the run.
+
+        Raises
+        ------
+        ValueError
+            If an argument is out of range, ``decide_every`` is not a whole number of steps,
+            ``horizon`` not a whole number of decision intervals, a break of ``d`` is off the
+            grid or a tone at or above the Nyquist frequency.
+        EnergyOverflowError
+            If the state stays finite but the energy exceeds the float range.
+
+        Warns
+        -----
+        UnstableRunWarning
+            If a candidate does not stabilize the plant that is run (``true_A``), or the state
+            at a decision point exceeds the divergence monitor's bound (:mod:`fdsc._divergence`).
+
+        Examples
+        --------
+        The README's oscillator under a slow tone that turns fast at 60 s, its estimate from
+        a backward difference at 1 ms and a plant 10 % faster than the model:
+
+        >>> from fdsc import Plant
+        >>> plant = Plant([[0.0, 1.0], [-4.0, -0.4]], [[0.0], [1.0]], [[0.0], [1.0]],
+        ...               [[1.0, 0.0], [0.0, 0.0]], [[0.0], [0.0]], [[0.0], [0.1]])
+        >>> sup = Supervisor(plant, [[[-21.85, -22.27]], [[0.495, -1.473]]])
+        >>> d = Piecewise([0.0, 60.0, 200.0], [Sinusoids([1.0], [0.2]), Sinusoids([1.0], [12.0])])
+        >>> run = sup.run_measured(d, 120.0, 1e-3, derivative="backward", true_A=1.1 * plant.A,
+        ...                        warmup=5.0)
+        >>> run.sequence.tolist(), bool(60.0 < run.switch_times[-1] < 70.0)
+        ([0, 1], True)
+        """
+        from . import _measured
+        from ._simulate_kernel import check_resolved
+        from ._validation import as_choice, as_matrix
+
+        check_type("d", d, Sinusoids | Piecewise, "an fdsc.Sinusoids or fdsc.Piecewise")
+        horizon = as_positive("horizon", horizon)
+        dt = as_positive("dt", dt)
+        derivative = as_choice("derivative", derivative, _measured.DERIVATIVES)
+        n = self.plant.n_states
+        A_t = self.plant.A if true_A is None else np.array(as_matrix("true_A", true_A, (n, n)))
+        block = round(self.decide_every / dt)
+        if block < 1 or abs(block * dt - self.decide_every) > 1e-9 * self.decide_every:
+            raise ValueError(f"dt must divide decide_every = {self.decide_every:g} s into whole steps, "
+                             f"but found {dt!r}")
+        nb = round(horizon / self.decide_every)
+        if nb < 1 or abs(nb * self.decide_every - horizon) > 1e-9 * horizon:
+            raise ValueError(f"horizon must be a whole number of decision intervals (decide_every = "
+                             f"{self.decide_every:g} s), but found {horizon!r}")
+        check_resolved(d, dt, "run_measured: ")
+        x0 = np.zeros(n) if x0 is None else np.array(as_vector("x0", x0, n))
+        lam = as_positive("forgetting", forgetting)
+        h = as_nonnegative("hysteresis", hysteresis)
+        nm = len(self.gains)
+        if isinstance(sigma0, bool) or not isinstance(sigma0, int | np.integer) or not 0 <= sigma0 < nm:
+            raise ValueError(f"sigma0 must be a candidate's index in [0, {nm}), but found {sigma0!r}")
+        first = max(1, math.ceil(as_nonnegative("warmup", warmup) / self.decide_every - 1e-9))
+        dwell = math.ceil(as_nonnegative("min_dwell", min_dwell) / self.decide_every - 1e-9)
+        A_modes, B_modes = _measured.modes(self, A_t)
+        worst = max(float(np.max(np.linalg.eigvals(M).real)) for M in A_modes)
+        if worst >= 0:
+            warnings.warn(f"run_measured: a candidate's loop with the plant that is run (true_A) and "
+                          f"the estimate it feeds back has an eigenvalue with real part {worst:.4g} ≥ 0; "
+                          "the divergence monitor is off", UnstableRunWarning, stacklevel=2)
+        e, sigma, mu, big, x = _measured.run(self, A_t, d, horizon, dt, x0, derivative,
+                                             math.exp(-lam * self.decide_every), h, first, dwell,
+                                             int(sigma0))
+        start = x0 if self.K0 is None else np.tile(x0, 2)
+        limit = _divergence.threshold(A_modes, B_modes, start, d)
+        change = np.flatnonzero(np.diff(sigma)) + 1
+        diverged = None
+        over = np.flatnonzero(~(big <= limit))
+        if over.size:
+            diverged = float((over[0] + 1) * self.decide_every)
+            bound = limit / _divergence.SAFETY
+            warnings.warn(_divergence.message("run_measured: ", diverged, float(big[over[0]]) / bound,
+                                              bound), UnstableRunWarning, stacklevel=2)
+        elif not np.all(np.isfinite(e)):
+            raise EnergyOverflowError("run_measured: the state stays finite but the energy exceeds the "
+                                      "float range (about 1.8e308): scale the disturbance down")
+        points = np.arange(nb + 1) * self.decide_every
+        points[-1] = horizon
+        share = np.bincount(sigma, minlength=nm) / sigma.size
+        return SupervisedRun(horizon, dt, float(e.sum()), _input_energy(d, horizon),
+                             change * self.decide_every, np.r_[sigma[:1], sigma[change]], share, x,
+                             points, mu, diverged)
+
+
+def _input_energy(d, horizon) -> float:
+    """``∫₀^horizon d²``, exactly."""
+    from ._blocks import Grid
+
+    g = Grid(d, np.array([0.0, float(horizon)]))
+    return float(g.run(g.tables([_dummy_input()]), 0, False, np.zeros(1))[0].sum())
 
 
 @njit(cache=True)
@@ -925,6 +1061,13 @@ def _run_on_grid(prep, sigma, mu, dt):
     switch_times = change * sup.decide_every
     sequence = np.r_[sigma[:1], sigma[change]]
     block = round(sup.decide_every / dt)
+    entered = {int(m) for m in sequence[1:]}
+    fastest = max([float(np.abs(np.linalg.eigvals(prep.loops[m].A)).max()) for m in entered] + [0.0])
+    if fastest * dt > STIFF_STEP:
+        warnings.warn(f"supervise: a loop the law switches to has a mode at {fastest:.3g} /s, so "
+                      f"|λ| dt = {fastest * dt:.3g} > {STIFF_STEP:g}: the transient that follows the switch "
+                      "is shorter than a step, and Simpson's rule on the grid misses its energy; run it "
+                      "exactly (dt=None)", RuntimeWarning, stacklevel=3)
     N = prep.n_blocks * block + 1
     bounds = [0, *(change * block).tolist(), N - 1]
     x = prep.xstart.copy()

@@ -3,6 +3,7 @@ independent runs (the fixed-gain run after its decision, the copies' monitoring 
 realization through copies), its scale independence, and bad input by name."""
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -182,6 +183,21 @@ def test_the_exact_engine_handles_a_stiff_loop():
     r = simulate_stream(loop, d, 10.0, 1e-3)
     np.testing.assert_allclose(x, r.x_final, rtol=1e-8, atol=1e-12)
     assert e.sum() == pytest.approx(r.energy, rel=1e-4)       # the simulator misses the 1 µs transient
+
+
+def test_a_stepped_run_that_switches_a_stiff_loop_warns():
+    # with a cheap control, a candidate with a mode at −2·10⁴ /s wins at once: at dt = 10 ms the
+    # transient after the switch to it is sub-step
+    cheap = Plant(PLANT.A, PLANT.B1, PLANT.B2, PLANT.C, PLANT.D1, [[0.0], [1e-4]])
+    stiff = [GAINS[0], np.array([[-4.0e4, -2.0e4]])]
+    with pytest.warns(RuntimeWarning, match=r"Simpson's rule on the grid misses"):
+        run = supervise(cheap, stiff, TWO, 100.0, 1e-2)
+    assert run.sequence.tolist() == [0, 1]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        supervise(cheap, stiff, TWO, 100.0)                     # exact: no warning
+        supervise(cheap, stiff, TWO, 100.0, 1e-2, sigma0=1, hysteresis=1e9)   # never switches to it
+        supervise(PLANT, GAINS, TWO, 100.0, 1e-2)               # not stiff: no warning
 
 
 def test_the_decisions_do_not_depend_on_the_step():

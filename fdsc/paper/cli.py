@@ -10,7 +10,7 @@ python -m fdsc cold-times [--book DIR] [--out FILE]
                                      (default: book/data/cold_times.json, which the book's
                                      environment page shows); takes many minutes
 python -m fdsc disturbance-law [--n N] [--workers W] [--scheduler ADDRESS] [--out FILE]
-                               [--robustness-only]
+                               [--robustness-only | --measured-only]
                                      the full non-stationary study of the law on the
                                      disturbance estimate (N draws per example, default 500),
                                      on W processes or a Dask scheduler, written to FILE
@@ -166,7 +166,7 @@ def cold_times_command(argv=None):
 
 def disturbance_law_command(argv=None):
     """``disturbance-law [--n N] [--workers W] [--scheduler ADDRESS] [--out FILE]
-    [--robustness-only]``: the full
+    [--robustness-only | --measured-only]``: the full
     study of :mod:`fdsc.paper.disturbance_law` (:func:`~fdsc.paper.disturbance_law.full_study`).
 
     Parameters
@@ -182,7 +182,7 @@ def disturbance_law_command(argv=None):
     import argparse
     from concurrent.futures import ProcessPoolExecutor
 
-    from .disturbance_law import FULL_FILE, N_FULL, full_study, robustness
+    from .disturbance_law import FULL_FILE, N_FULL, full_study, measured_robustness, robustness
 
     parser = argparse.ArgumentParser(prog="python -m fdsc disturbance-law",
                                      description="the full study of the law on the disturbance estimate")
@@ -193,6 +193,8 @@ def disturbance_law_command(argv=None):
     parser.add_argument("--out", type=Path, default=Path(__file__).resolve().parents[2] / FULL_FILE)
     parser.add_argument("--robustness-only", action="store_true",
                         help="add the robustness study to an existing --out file instead of rerunning")
+    parser.add_argument("--measured-only", action="store_true",
+                        help="add only the runs on sampled measurements to an existing --out file")
     args = parser.parse_args(sys.argv[2:] if argv is None else argv)
     if args.n < 2:
         parser.error(f"--n must be at least 2, but found {args.n}")
@@ -201,12 +203,15 @@ def disturbance_law_command(argv=None):
     start = time.perf_counter()
 
     def run(executor):
-        if not args.robustness_only:
+        if not (args.robustness_only or args.measured_only):
             return full_study(args.n, executor=executor, out=args.out)
         if not args.out.is_file():
-            parser.error(f"--robustness-only needs the full study in {args.out}, which does not exist")
+            parser.error(f"--robustness-only and --measured-only need the full study in {args.out}, "
+                         "which does not exist")
         result = json.loads(args.out.read_text())
-        result["robustness"] = robustness(result, executor=executor)
+        if args.robustness_only:
+            result["robustness"] = robustness(result, executor=executor)
+        result["measured"] = measured_robustness(result, executor=executor)
         args.out.write_text(json.dumps(result, indent=1))
         return result
 

@@ -36,6 +36,8 @@ from .disturbance_law_draws import (
     DECIDE_EVERY,
     FRONT_FRACTIONS,
     FRONT_MAXITER,
+    MEASURED_DT,
+    MEASURED_VARIANTS,
     HYSTERESES,
     IDEAL_PAIR,
     LAMBDAS,
@@ -55,6 +57,7 @@ from .disturbance_law_draws import (
     law_run,
     law_supervisor,
     lqr,
+    measured_result,
     robust_result,
     step_check,
 )
@@ -66,7 +69,7 @@ __all__ = ["SEED", "N_RECORD", "N_FULL", "LAMBDAS", "HYSTERESES", "DECIDE_EVERY"
            "FRONT_MAXITER", "Draw", "draw", "front", "candidates", "lqr", "certificate", "draw_result",
            "Study", "study", "rho_t_family", "record_part", "full_study", "load_full", "LawRun",
            "law_run", "direct_realization", "N_ROBUST", "ROBUST_SNR_DB", "robustness",
-           "step_check"]
+           "step_check", "MEASURED_DT", "MEASURED_VARIANTS", "measured_result", "measured_robustness"]
 
 #: Draws per example in the record (half train, half test) and in the full study.
 N_RECORD, N_FULL = 12, 500
@@ -323,6 +326,7 @@ def full_study(n: int = N_FULL, *, seed: int = SEED, executor=None, out=FULL_FIL
                 st.best_of("band_power")).tolist(),
             "band_power_law": st.best_of("band_power")}
     result["robustness"] = robustness(result, n=min(N_ROBUST, n - n // 2), executor=executor)
+    result["measured"] = measured_robustness(result, n=min(N_ROBUST, n - n // 2), executor=executor)
     if out is not None:
         Path(out).parent.mkdir(parents=True, exist_ok=True)
         Path(out).write_text(json.dumps(result, indent=1))
@@ -370,6 +374,47 @@ def robustness(full: dict, *, n: int = N_ROBUST, snrs=ROBUST_SNR_DB, executor=No
         exact = np.array([p["exact"] for p in res[:n]])
         out[example] = {"draws": n, "exact_median": float(np.median(exact)),
                         "exact_win_rate": float(np.mean(beats(exact))), "snr_db": per}
+    return out
+
+
+def measured_robustness(full: dict, *, n: int = N_ROBUST, executor=None) -> dict:
+    """The law chosen in the full study on its first ``n`` test draws per example, run on
+    sampled measurements (:func:`measured_result`): the exact derivative, the backward
+    difference, and a plant whose ``A`` is 10 % off the model.
+
+    Parameters
+    ----------
+    full : dict
+        The full study (:func:`full_study`).
+    n : int, optional
+        Test draws per example.
+    executor : concurrent.futures.Executor or dask.distributed.Client, optional
+
+    Returns
+    -------
+    dict
+        ``{example: {"draws", "dt", "variants": {name: {"median", "win_rate", "p95",
+        "switches_ratio", "diverged"}}}}``, each against the fixed gain chosen in advance run on
+        the same plant; ``"exact"`` is the exact engine on the exact estimate, and
+        ``switches_ratio`` a variant's switches over the exact law's.
+    """
+    n = as_count("n", n, 1)
+    out = {}
+    for example in ("aircraft", "generic"):
+        r = full[example]
+        key = "{law}/{realization}/{forgetting:g}/{hysteresis:g}".format(**r["law"])
+        first = full["n"] // 2
+        res = _map(measured_result, [(example, first + i, key, r["fixed_in_advance"], full["seed"])
+                                     for i in range(n)], executor)
+        per = {}
+        for name in ("exact", *MEASURED_VARIANTS, "min_switching"):
+            ratio = np.array([p[name]["ratio"] for p in res])
+            per[name] = {"median": float(np.median(ratio)), "p95": float(np.quantile(ratio, 0.95)),
+                         "win_rate": float(np.mean(beats(ratio))),
+                         "switches_ratio": float(sum(p[name]["switches"] for p in res)
+                                                 / max(1, sum(p["exact"]["switches"] for p in res))),
+                         "diverged": int(sum(p[name]["diverged"] for p in res))}
+        out[example] = {"draws": n, "dt": MEASURED_DT, "variants": per}
     return out
 
 

@@ -1,0 +1,340 @@
+"""The supervisor run causally on sampled measurements: the engine of
+:meth:`fdsc.supervisor.Supervisor.run_measured`. Internal.
+
+:class:`fdsc.supervisor.Prepared` assumes the estimate ŵ is known as a signal (``d`` itself, or
+``d`` plus a given error), so the decisions are computed before the loop is run. When ŵ is
+computed from the loop's own measurements with a wrong model or a finite-difference derivative,
+
+    ŵ_k = B1⁺ (ẋ_k − A x_k − B2 u_k),
+
+its error depends on the state, hence on the decisions, and the monitors, the copies and the
+plant must be run together. Here they are, on a grid of step ``dt``:
+
+* at ``t_k`` the controller reads ``x_k`` and ``ẋ_k``: the true derivative
+  ``A_t x_k + B1 d(t_k) + B2 u_k`` of the plant that is run (``derivative="exact"``) or the
+  backward difference ``(x_k − x_{k−1}) / dt`` (``"backward"``; ``x_{−1} = x_0``), and forms ŵ_k
+  with the *nominal* ``A`` (the model), so a plant run with ``A_t ≠ A`` gives
+  ``ŵ = d + B1⁺ (A_t − A) x`` even with the exact derivative;
+* ŵ_k is held over ``[t_k, t_{k+1})`` (a zero-order hold): every monitor and every copy of the
+  realization steps exactly under the held input (Van Loan's block exponential of the system
+  with ŵ as a constant state), and its output energy over the step is integrated exactly;
+* the plant, with the copy of the active candidate that the realization through copies feeds
+  back, steps exactly under the true disturbance (its tones' oscillators in the state, as in
+  :mod:`fdsc._blocks`) and the held ŵ, and its output energy is integrated exactly;
+* at each decision point the monitors' interval energies enter the fading signals μ, the banks
+  restart, and the law decides, exactly as :meth:`fdsc.supervisor.Prepared.mu` and
+  :meth:`~fdsc.supervisor.Prepared.decide` do.
+
+The only approximation against :class:`~fdsc.supervisor.Prepared` with the exact estimate is
+the hold of ŵ (first order in dt); the plant's own run is exact for the decisions taken.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ._blocks import _pair, pieces
+
+__all__ = []
+
+DERIVATIVES = ("exact", "backward")
+
+
+def _held(A, B, C, D, dt):
+    """``(P, Q)`` of one step of an LTI system under an input held constant: the state
+    ``[x; v]`` with ``v̇ = 0``, ``P`` its transition (top rows) and ``Q`` the output energy's
+    quadratic form."""
+    n, m = A.shape[0], B.shape[1]
+    Aa = np.zeros((n + m, n + m))
+    Aa[:n, :n] = A
+    Aa[:n, n:] = B
+    Ca = np.hstack([C, D])
+    P, Q = _pair(Aa, np.zeros((n + m, 1)), Ca, np.zeros((C.shape[0], 1)), np.zeros(0), dt)
+    return P[:n], Q
+
+
+def _joint(plant, A_true, K, K0, dt, w):
+    """``(P, Q)`` of one step of the plant ``A_true`` with the candidate gain K, its copy (if
+    K0 is given) and the held ŵ as states, under the tones ``w`` (module docstring)."""
+    A, B1, B2, C, D1, D2 = plant.A, plant.B1, plant.B2, plant.C, plant.D1, plant.D2
+    n = A.shape[0]
+    nc = 0 if K0 is None else n
+    Kx = K if K0 is None else K0
+    N = n + nc + 1
+    Aj = np.zeros((N, N))
+    Aj[:n, :n] = A_true + B2 @ Kx
+    Cj = np.zeros((C.shape[0], N))
+    Cj[:, :n] = C + D2 @ Kx
+    if nc:
+        Aj[:n, n:2 * n] = B2 @ (K - K0)
+        Aj[n:2 * n, n:2 * n] = A + B2 @ K
+        Aj[n:2 * n, 2 * n:] = B1
+        Cj[:, n:2 * n] = D2 @ (K - K0)
+    Bj = np.zeros((N, 1))
+    Bj[:n] = B1
+    P, Q = _pair(Aj, Bj, Cj, D1, w, dt)
+    return P[:n + nc], Q
+
+
+def modes(sup, A_true):
+    """``(A_modes, B)``: the loop with each candidate active, as the continuous-time limit of
+    the run (ŵ = d + B1⁺ (A_t − A) x fed through the copy of the active candidate): the state
+    ``[x; x̂_σ]`` (copies) or x (direct); the other copies do not act on the plant."""
+    p = sup.plant
+    n = p.n_states
+    if sup.K0 is None:
+        return [A_true + p.B2 @ K for K in sup.gains], p.B1
+    leak = p.B1 @ np.linalg.pinv(p.B1) @ (A_true - p.A)
+    out = []
+    for K in sup.gains:
+        M = np.zeros((2 * n, 2 * n))
+        M[:n, :n] = A_true + p.B2 @ sup.K0
+        M[:n, n:] = p.B2 @ (K - sup.K0)
+        M[n:, :n] = leak
+        M[n:, n:] = p.A + p.B2 @ K
+        out.append(M)
+    return out, np.vstack([p.B1, p.B1])
+
+
+def tables(sup, A_true, d, horizon, dt):
+    """Everything the compiled loop reads, for a supervisor ``sup`` whose plant is run with the
+    state matrix ``A_true``."""
+    plant = sup.plant
+    N = round(horizon / dt)
+    pcs = pieces(d, horizon)
+    T = max([p[2].size for p in pcs] + [0])
+    nP = len(pcs)
+    piece_start = np.empty(nP + 1, dtype=np.int64)
+    for j, (t0, _t1, *_r) in enumerate(pcs):
+        k = round(t0 / dt)
+        if abs(k * dt - t0) > 1e-6 * dt + 1e-12 * max(1.0, t0):
+            raise ValueError(f"run_measured: the disturbance switches at t = {t0!r} s, which is not a "
+                             f"multiple of dt = {dt!r} s; choose dt dividing every break")
+        piece_start[j] = k
+    piece_start[-1] = N
+    W = np.zeros((nP, T))
+    AMP = np.zeros((nP, T))
+    PH = np.zeros((nP, T))
+    for j, (_t0, _t1, w, a, ph) in enumerate(pcs):
+        W[j, :w.size], AMP[j, :w.size], PH[j, :w.size] = w, a, ph
+    I = len(sup.gains)
+    n = plant.n_states
+    nc = 0 if sup.K0 is None else n
+    nj = n + nc + 1
+    PJ = np.zeros((nP, I, n + nc, nj + 2 * T))
+    QJ = np.zeros((nP, I, nj + 2 * T, nj + 2 * T))
+    for j, (_t0, _t1, w, _a, _ph) in enumerate(pcs):
+        idx = np.r_[np.arange(nj), nj + np.arange(w.size), nj + T + np.arange(w.size)]
+        for i, K in enumerate(sup.gains):
+            P, Q = _joint(plant, A_true, K, sup.K0, dt, w)
+            PJ[j, i][:, idx] = P
+            QJ[j, i][np.ix_(idx, idx)] = Q
+    nm = max(m.A.shape[0] for m in sup.monitors)
+    PM = np.zeros((I, nm, nm + 1))
+    QM = np.zeros((I, nm + 1, nm + 1))
+    for i, m in enumerate(sup.monitors):
+        k = m.A.shape[0]
+        P, Q = _held(m.A, m.B, m.C, m.D, dt)
+        sel = np.r_[np.arange(k), nm]
+        PM[i][np.ix_(np.arange(k), sel)] = P
+        QM[i][np.ix_(sel, sel)] = Q
+    PC = np.zeros((I, n, n + 1))
+    for i, loop in enumerate(sup.loops):
+        PC[i] = _held(loop.A, loop.B, loop.C, loop.D, dt)[0]
+    return (piece_start, W, AMP, PH, PJ, QJ, PM, QM, PC)
+
+
+def run(sup, A_true, d, horizon, dt, x0, derivative, decay, h, first, dwell, sigma0):
+    """``(energy per decision interval, σ per interval, μ at the decision points, max |x| at the
+    end of each interval, final plant state)`` of the law run on measurements."""
+    piece_start, W, AMP, PH, PJ, QJ, PM, QM, PC = tables(sup, A_true, d, horizon, dt)
+    plant = sup.plant
+    block = round(sup.decide_every / dt)
+    nb = round(horizon / sup.decide_every)
+    R, half = sup.restart_blocks, max(1, sup.restart_blocks // 2)
+    fresh = np.zeros((2, nb + 1), dtype=np.bool_)       # as in Prepared.mu
+    fresh[0, np.arange(0, nb, R)] = True
+    fresh[1, np.r_[0, np.arange(half, nb, R)]] = True
+    k = np.arange(nb + 1)
+    ages = [k - np.flatnonzero(f)[np.searchsorted(np.flatnonzero(f), k, side="right") - 1]
+            for f in fresh]
+    read = np.where(ages[0] >= ages[1], 0, 1).astype(np.int64)
+    b1p = np.linalg.pinv(plant.B1)[0]
+    Kx = np.array(sup.gains) if sup.K0 is None else np.array([sup.K0] * len(sup.gains))
+    Kc = np.array(sup.gains) - Kx
+    out_e = np.zeros(nb)
+    sigma = np.zeros(nb, dtype=np.int64)
+    mu = np.zeros((nb + 1, len(sup.gains)))
+    big = np.zeros(nb)
+    x = np.array(x0, dtype=float)
+    _loop(block, nb, dt, piece_start, W, AMP, PH, PJ, QJ, PM, QM, PC, fresh, read,
+          plant.A, A_true, plant.B1[:, 0], plant.B2, b1p, Kx, Kc, sup.K0 is not None,
+          derivative == "backward", sup.law == "band_power", decay, h, first, dwell, sigma0,
+          x, out_e, sigma, mu, big)
+    return out_e, sigma, mu, big, x
+
+
+@njit(cache=True)
+def _loop(block, nb, dt, piece_start, W, AMP, PH, PJ, QJ, PM, QM, PC, fresh, read,
+          A, At, b1, B2, b1p, Kx, Kc, copies, backward, largest, decay, h, first, dwell, q,
+          x, out_e, sigma, mu, big):
+    n = x.shape[0]
+    I = PC.shape[0]
+    T = W.shape[1]
+    nm = PM.shape[1]
+    mu_u = B2.shape[1]
+    nc = n if copies else 0
+    nj = n + nc + 1
+    Wd = nj + 2 * T
+    xi = np.zeros(Wd)
+    cs = np.zeros(2 * T)
+    mon = np.zeros((2, I, nm))
+    acc = np.zeros((2, I))
+    bank = np.zeros((2, I))
+    cop = np.zeros((I, n))
+    xprev = x.copy()
+    xnew = np.zeros(n + nc)
+    u = np.zeros(mu_u)
+    v = np.zeros(nm + 1)
+    tmp = np.zeros(nm)
+    last = -dwell
+    piece = 0
+    sigma_now = q
+    N = nb * block
+    for k in range(N):
+        while piece_start[piece + 1] <= k:
+            piece += 1
+        t = k * dt
+        w = 0.0
+        for j in range(T):
+            a = AMP[piece, j]
+            if a != 0.0:
+                arg = W[piece, j] * t + PH[piece, j]
+                cs[j] = a * math.cos(arg)
+                cs[T + j] = a * math.sin(arg)
+                w += cs[T + j]
+            else:
+                cs[j] = 0.0
+                cs[T + j] = 0.0
+        s = sigma_now
+        # the control and the measured derivative
+        for r in range(mu_u):
+            acc_u = 0.0
+            for c in range(n):
+                acc_u += Kx[s, r, c] * x[c]
+                if copies:
+                    acc_u += Kc[s, r, c] * cop[s, c]
+            u[r] = acc_u
+        what = 0.0
+        for r in range(n):
+            ax = 0.0
+            at = 0.0
+            for c in range(n):
+                ax += A[r, c] * x[c]
+                at += At[r, c] * x[c]
+            bu = 0.0
+            for c in range(mu_u):
+                bu += B2[r, c] * u[c]
+            if backward:
+                xd = (x[r] - xprev[r]) / dt
+            else:
+                xd = at + b1[r] * w + bu
+            what += b1p[r] * (xd - ax - bu)
+        # the monitors, both banks
+        for b in range(2):
+            for i in range(I):
+                for c in range(nm):
+                    v[c] = mon[b, i, c]
+                v[nm] = what
+                e = 0.0
+                for r in range(nm + 1):
+                    row = 0.0
+                    for c in range(nm + 1):
+                        row += QM[i, r, c] * v[c]
+                    e += v[r] * row
+                acc[b, i] += e
+                for r in range(nm):
+                    row = 0.0
+                    for c in range(nm + 1):
+                        row += PM[i, r, c] * v[c]
+                    tmp[r] = row
+                for r in range(nm):
+                    mon[b, i, r] = tmp[r]
+        # the plant with the active copy, under d and the held estimate
+        for r in range(n):
+            xi[r] = x[r]
+        for r in range(nc):
+            xi[n + r] = cop[s, r]
+        xi[n + nc] = what
+        for r in range(2 * T):
+            xi[nj + r] = cs[r]
+        e = 0.0
+        for r in range(Wd):
+            row = 0.0
+            for c in range(Wd):
+                row += QJ[piece, s, r, c] * xi[c]
+            e += xi[r] * row
+        out_e[k // block] += e
+        for r in range(n + nc):
+            row = 0.0
+            for c in range(Wd):
+                row += PJ[piece, s, r, c] * xi[c]
+            xnew[r] = row
+        # the other copies of the realization
+        if copies:
+            for i in range(I):
+                if i == s:
+                    continue
+                for r in range(n):
+                    row = PC[i, r, n] * what
+                    for c in range(n):
+                        row += PC[i, r, c] * cop[i, c]
+                    tmp[r] = row
+                for r in range(n):
+                    cop[i, r] = tmp[r]
+            for r in range(n):
+                cop[s, r] = xnew[n + r]
+        for r in range(n):
+            xprev[r] = x[r]
+            x[r] = xnew[r]
+        if (k + 1) % block == 0:
+            kb = (k + 1) // block - 1
+            top = 0.0
+            for r in range(n):
+                top = max(top, abs(x[r]))
+            big[kb] = top
+            p = kb + 1
+            for b in range(2):
+                for i in range(I):
+                    if fresh[b, p]:
+                        bank[b, i] = 0.0
+                        for c in range(nm):
+                            mon[b, i, c] = 0.0
+                    else:
+                        bank[b, i] = decay * bank[b, i] + acc[b, i]
+                    acc[b, i] = 0.0
+            rb = read[p]
+            for i in range(I):
+                mu[p, i] = bank[rb, i]
+            if p < nb:
+                if p >= first and p - last >= dwell:
+                    best = 0
+                    cbest = math.inf
+                    for i in range(I):
+                        ci = mu[p, i]
+                        if largest:
+                            ci = math.inf if ci == 0.0 else 1.0 / ci
+                        if ci < cbest:
+                            cbest = ci
+                            best = i
+                    cq = mu[p, sigma_now]
+                    if largest:
+                        cq = math.inf if cq == 0.0 else 1.0 / cq
+                    if best != sigma_now and (1.0 + h) * cbest < cq:
+                        sigma_now = best
+                        last = p
+                sigma[p] = sigma_now
+    sigma[0] = q

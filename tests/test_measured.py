@@ -1,0 +1,101 @@
+"""Supervisor.run_measured: the law run causally on sampled measurements, against the exact
+engine (the plant's run is exact, the monitors converge at first order in the step), the
+estimate's errors (a wrong model, a backward difference), and bad input by name."""
+
+import warnings
+
+import numpy as np
+import pytest
+
+from fdsc import Piecewise, Plant, Sinusoids, Supervisor, UnstableRunWarning
+from fdsc.supervisor import lqr_gain
+
+PLANT = Plant([[0.0, 1.0], [-4.0, -0.4]], [[0.0], [1.0]], [[0.0], [1.0]],
+              [[1.0, 0.0], [0.0, 0.0]], [[0.0], [0.0]], [[0.0], [0.1]])
+GAINS = [np.array([[-21.85, -22.27]]), np.array([[0.495, -1.473]])]
+# slow, then fast, then slow again: two changes of the band that dominates
+D = Piecewise([0.0, 20.0, 40.0, 80.0], [Sinusoids([1.0, 0.3], [0.2, 0.5]), Sinusoids([1.0], [12.0]),
+                                        Sinusoids([1.0], [0.3])])
+T = 60.0
+
+
+@pytest.mark.parametrize("K0", [None, "lqr"])
+def test_with_the_exact_derivative_it_takes_the_exact_engines_decisions(K0):
+    sup = Supervisor(PLANT, GAINS, restart=10.0, K0=None if K0 is None else lqr_gain(PLANT))
+    exact = sup.run(D, T, warmup=2.0)
+    err = []
+    for dt in (2e-3, 1e-3):
+        run = sup.run_measured(D, T, dt, warmup=2.0)
+        np.testing.assert_array_equal(run.switch_times, exact.switch_times)
+        np.testing.assert_array_equal(run.sequence, exact.sequence)
+        err.append(np.abs(run.mu - exact.mu).max() / exact.mu.max())
+        if K0 is None:          # the plant's own run is exact along the same decisions
+            assert run.energy == pytest.approx(exact.energy, rel=1e-9)
+    assert exact.switches >= 2
+    # the hold of ŵ is the only approximation: first order in the step
+    assert 1.8 < err[0] / err[1] < 2.2 and err[1] < 1e-3
+
+
+def test_a_candidate_held_throughout_is_the_fixed_run_of_the_plant_that_is_run():
+    true_A = PLANT.A * 1.2
+    sup = Supervisor(PLANT, GAINS)
+    truth = Supervisor(Plant(true_A, PLANT.B1, PLANT.B2, PLANT.C, PLANT.D1, PLANT.D2), GAINS)
+    for i in range(2):
+        run = sup.run_measured(D, T, 1e-3, true_A=true_A, derivative="backward", hysteresis=1e12,
+                               sigma0=i)
+        assert run.switches == 0
+        assert run.energy == pytest.approx(truth.prepare(D, T).fixed(i), rel=1e-9)
+        assert run.energy != pytest.approx(sup.prepare(D, T).fixed(i), rel=1e-3)
+
+
+def test_a_model_error_enters_the_estimate_through_the_state():
+    # d = 0 from x0 ≠ 0: the exact model's estimate is 0 (monitors at rest), a wrong model's is
+    # B1⁺ (A_t − A) x ≠ 0
+    zero = Sinusoids([0.0], [1.0])
+    sup = Supervisor(PLANT, GAINS)
+    right = sup.run_measured(zero, 10.0, 1e-3, x0=[1.0, 0.0])
+    wrong = sup.run_measured(zero, 10.0, 1e-3, x0=[1.0, 0.0], true_A=PLANT.A * 1.1)
+    assert np.abs(right.mu).max() < 1e-24
+    assert np.abs(wrong.mu).max() > 1e-4
+
+
+def test_the_backward_difference_converges_to_the_exact_derivative():
+    sup = Supervisor(PLANT, GAINS, restart=10.0, K0=lqr_gain(PLANT))
+    gap = []
+    for dt in (4e-3, 2e-3, 1e-3):
+        a = sup.run_measured(D, T, dt, warmup=2.0)
+        b = sup.run_measured(D, T, dt, warmup=2.0, derivative="backward")
+        gap.append(np.abs(a.mu - b.mu).max() / a.mu.max())
+    assert gap[0] > gap[1] > gap[2] and gap[2] < 0.02
+
+
+def test_a_model_error_that_destabilizes_a_loop_is_reported():
+    sup = Supervisor(PLANT, GAINS)
+    with pytest.warns(UnstableRunWarning, match="true_A"):
+        sup.run_measured(D, 4.0, 1e-3, true_A=PLANT.A + 30.0 * np.eye(2))
+
+
+def test_a_model_error_within_the_loops_margins_is_silent():
+    sup = Supervisor(PLANT, GAINS, K0=lqr_gain(PLANT))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        sup.run_measured(D, 4.0, 1e-3, true_A=PLANT.A * 0.9, derivative="backward")
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"dt": 0.03}, "dt must divide decide_every"),
+    ({"dt": -1e-3}, "dt"),
+    ({"derivative": "forward"}, "derivative"),
+    ({"true_A": np.eye(3)}, "true_A"),
+    ({"horizon": 4.05}, "whole number of decision intervals"),
+    ({"d": Piecewise([0.0, 1.0005], [Sinusoids([1.0], [1.0])])}, "not a multiple of dt"),
+    ({"d": Sinusoids([1.0], [4000.0])}, "Nyquist"),
+    ({"sigma0": 2}, "sigma0"),
+    ({"forgetting": 0.0}, "forgetting"),
+    ({"x0": [1.0]}, "x0"),
+])
+def test_bad_input_is_refused_by_name(kwargs, match):
+    args = {"d": D, "horizon": 4.0, "dt": 1e-3, **kwargs}
+    with pytest.raises((ValueError, TypeError), match=match):
+        Supervisor(PLANT, GAINS).run_measured(args.pop("d"), args.pop("horizon"), args.pop("dt"),
+                                              **args)
