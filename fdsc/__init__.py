@@ -131,8 +131,6 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers and editors
     )
     from .frequency import BandPeak, band_peak, freqresp, sigma_max, steady_state_gain, steady_state_gains
     from .gc_dwell import DwellCertificate, geromel_colaneri_dwell
-    from .min_switching import MinSwitchingCertificate, min_switching
-    from .supervise_batch import SupervisedCase, supervise_batch
     from .lmi import GKYPResult, gkyp_certify, gkyp_gamma
     from .lyapunov_jumps import (
         SwitchingCertificate,
@@ -140,6 +138,7 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers and editors
         certify_switching_gain,
         switching_forms,
     )
+    from .min_switching import MinSwitchingCertificate, min_switching
     from .multiband import FrontPoint, MultibandResult, ParetoFront, pareto_front, synthesize_multiband
     from .plant import LTISystem, Plant, as_plant, as_system
     from .random_systems import random_hurwitz, random_plant, random_spd, random_system
@@ -155,6 +154,7 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers and editors
     )
     from .simulate import SimResult, envelope, simulate, time_grid
     from .stream import BatchResult, Case, StreamResult, Trace, simulate_batch, simulate_stream
+    from .supervise_batch import SupervisedCase, supervise_batch
     from .supervisor import (
         LAWS,
         Prepared,

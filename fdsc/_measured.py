@@ -120,12 +120,12 @@ def tables(sup, A_true, d, horizon, dt):
     PH = np.zeros((nP, T))
     for j, (_t0, _t1, w, a, ph) in enumerate(pcs):
         W[j, :w.size], AMP[j, :w.size], PH[j, :w.size] = w, a, ph
-    I = len(sup.gains)
+    n_cand = len(sup.gains)
     n = plant.n_states
     nc = 0 if sup.K0 is None else n
     nj = n + nc + 1
-    PJ = np.zeros((nP, I, n + nc, nj + 2 * T))
-    QJ = np.zeros((nP, I, nj + 2 * T, nj + 2 * T))
+    PJ = np.zeros((nP, n_cand, n + nc, nj + 2 * T))
+    QJ = np.zeros((nP, n_cand, nj + 2 * T, nj + 2 * T))
     for j, (_t0, _t1, w, _a, _ph) in enumerate(pcs):
         idx = np.r_[np.arange(nj), nj + np.arange(w.size), nj + T + np.arange(w.size)]
         for i, K in enumerate(sup.gains):
@@ -133,15 +133,15 @@ def tables(sup, A_true, d, horizon, dt):
             PJ[j, i][:, idx] = P
             QJ[j, i][np.ix_(idx, idx)] = Q
     nm = max(m.A.shape[0] for m in sup.monitors)
-    PM = np.zeros((I, nm, nm + 1))
-    QM = np.zeros((I, nm + 1, nm + 1))
+    PM = np.zeros((n_cand, nm, nm + 1))
+    QM = np.zeros((n_cand, nm + 1, nm + 1))
     for i, m in enumerate(sup.monitors):
         k = m.A.shape[0]
         P, Q = _held(m.A, m.B, m.C, m.D, dt)
         sel = np.r_[np.arange(k), nm]
         PM[i][np.ix_(np.arange(k), sel)] = P
         QM[i][np.ix_(sel, sel)] = Q
-    PC = np.zeros((I, n, n + 1))
+    PC = np.zeros((n_cand, n, n + 1))
     for i, loop in enumerate(sup.loops):
         PC[i] = _held(loop.A, loop.B, loop.C, loop.D, dt)[0]
     return (piece_start, W, AMP, PH, PJ, QJ, PM, QM, PC)
@@ -182,7 +182,7 @@ def _loop(block, nb, dt, piece_start, W, AMP, PH, PJ, QJ, PM, QM, PC, fresh, rea
           A, At, b1, B2, b1p, Kx, Kc, copies, backward, largest, decay, h, first, dwell, q,
           x, out_e, sigma, mu, big):
     n = x.shape[0]
-    I = PC.shape[0]
+    nI = PC.shape[0]
     T = W.shape[1]
     nm = PM.shape[1]
     mu_u = B2.shape[1]
@@ -191,10 +191,10 @@ def _loop(block, nb, dt, piece_start, W, AMP, PH, PJ, QJ, PM, QM, PC, fresh, rea
     Wd = nj + 2 * T
     xi = np.zeros(Wd)
     cs = np.zeros(2 * T)
-    mon = np.zeros((2, I, nm))
-    acc = np.zeros((2, I))
-    bank = np.zeros((2, I))
-    cop = np.zeros((I, n))
+    mon = np.zeros((2, nI, nm))
+    acc = np.zeros((2, nI))
+    bank = np.zeros((2, nI))
+    cop = np.zeros((nI, n))
     xprev = x.copy()
     xnew = np.zeros(n + nc)
     u = np.zeros(mu_u)
@@ -245,7 +245,7 @@ def _loop(block, nb, dt, piece_start, W, AMP, PH, PJ, QJ, PM, QM, PC, fresh, rea
             what += b1p[r] * (xd - ax - bu)
         # the monitors, both banks
         for b in range(2):
-            for i in range(I):
+            for i in range(nI):
                 for c in range(nm):
                     v[c] = mon[b, i, c]
                 v[nm] = what
@@ -285,7 +285,7 @@ def _loop(block, nb, dt, piece_start, W, AMP, PH, PJ, QJ, PM, QM, PC, fresh, rea
             xnew[r] = row
         # the other copies of the realization
         if copies:
-            for i in range(I):
+            for i in range(nI):
                 if i == s:
                     continue
                 for r in range(n):
@@ -308,7 +308,7 @@ def _loop(block, nb, dt, piece_start, W, AMP, PH, PJ, QJ, PM, QM, PC, fresh, rea
             big[kb] = top
             p = kb + 1
             for b in range(2):
-                for i in range(I):
+                for i in range(nI):
                     if fresh[b, p]:
                         bank[b, i] = 0.0
                         for c in range(nm):
@@ -317,13 +317,13 @@ def _loop(block, nb, dt, piece_start, W, AMP, PH, PJ, QJ, PM, QM, PC, fresh, rea
                         bank[b, i] = decay * bank[b, i] + acc[b, i]
                     acc[b, i] = 0.0
             rb = read[p]
-            for i in range(I):
+            for i in range(nI):
                 mu[p, i] = bank[rb, i]
             if p < nb:
                 if p >= first and p - last >= dwell:
                     best = 0
                     cbest = math.inf
-                    for i in range(I):
+                    for i in range(nI):
                         ci = mu[p, i]
                         if largest:
                             ci = math.inf if ci == 0.0 else 1.0 / ci

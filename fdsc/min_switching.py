@@ -108,14 +108,14 @@ def _blocks(loops, P, Pi, rho2):
 
 def _solve(loops, gamma, margin):
     """(P, ρ², Π) at the rate γ, or the SolverError that says why there are none."""
-    I, n = len(loops), loops[0].n_states
+    nI, n = len(loops), loops[0].n_states
     m = loops[0].B.shape[1]
-    Pi = gamma * (np.ones((I, I)) - np.eye(I)) / (I - 1) - gamma * np.eye(I)
-    P = [cp.Variable((n, n), symmetric=True) for _ in range(I)]
+    Pi = gamma * (np.ones((nI, nI)) - np.eye(nI)) / (nI - 1) - gamma * np.eye(nI)
+    P = [cp.Variable((n, n), symmetric=True) for _ in range(nI)]
     rho2 = cp.Variable(nonneg=True)
     cons = [p >> margin * np.eye(n) for p in P]
     for i, lp in enumerate(loops):
-        top = lp.A.T @ P[i] + P[i] @ lp.A + sum(Pi[j, i] * P[j] for j in range(I)) + lp.C.T @ lp.C
+        top = lp.A.T @ P[i] + P[i] @ lp.A + sum(Pi[j, i] * P[j] for j in range(nI)) + lp.C.T @ lp.C
         off = P[i] @ lp.B + lp.C.T @ lp.D
         blk = cp.bmat([[top, off], [off.T, lp.D.T @ lp.D - rho2 * np.eye(m)]])
         cons.append(_sym(blk) << -margin * np.eye(n + m))

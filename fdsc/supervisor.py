@@ -1061,8 +1061,13 @@ def _run_on_grid(prep, sigma, mu, dt):
     switch_times = change * sup.decide_every
     sequence = np.r_[sigma[:1], sigma[change]]
     block = round(sup.decide_every / dt)
-    entered = {int(m) for m in sequence[1:]}
-    fastest = max([float(np.abs(np.linalg.eigvals(prep.loops[m].A)).max()) for m in entered] + [0.0])
+    # the modes a switch excites: those of the loop switched to (direct); through copies only the
+    # plant's own loop A + B2 K0 (the copies run on ŵ whatever σ does)
+    if sup.K0 is None:
+        excited = [prep.loops[int(m)].A for m in set(sequence[1:].tolist())]
+    else:
+        excited = [sup.plant.A + sup.plant.B2 @ sup.K0] if change.size else []
+    fastest = max([float(np.abs(np.linalg.eigvals(M)).max()) for M in excited] + [0.0])
     if fastest * dt > STIFF_STEP:
         warnings.warn(f"supervise: a loop the law switches to has a mode at {fastest:.3g} /s, so "
                       f"|λ| dt = {fastest * dt:.3g} > {STIFF_STEP:g}: the transient that follows the switch "

@@ -22,13 +22,13 @@ def cert():
 
 
 def test_the_certificate_satisfies_its_inequalities(cert):
-    I = len(LOOPS)
-    Pi = cert.rate * (np.ones((I, I)) - np.eye(I)) / (I - 1) - cert.rate * np.eye(I)
+    nI = len(LOOPS)
+    Pi = cert.rate * (np.ones((nI, nI)) - np.eye(nI)) / (nI - 1) - cert.rate * np.eye(nI)
     assert np.allclose(Pi.sum(axis=0), 0.0) and np.all(Pi - np.diag(np.diag(Pi)) >= 0)
     for i, lp in enumerate(LOOPS):
         P = cert.P[i]
         assert np.linalg.eigvalsh(P).min() > 0
-        top = lp.A.T @ P + P @ lp.A + sum(Pi[j, i] * cert.P[j] for j in range(I)) + lp.C.T @ lp.C
+        top = lp.A.T @ P + P @ lp.A + sum(Pi[j, i] * cert.P[j] for j in range(nI)) + lp.C.T @ lp.C
         off = P @ lp.B + lp.C.T @ lp.D
         M = np.block([[top, off], [off.T, lp.D.T @ lp.D - cert.l2_bound**2 * np.eye(1)]])
         assert np.linalg.eigvalsh(0.5 * (M + M.T)).max() < 0

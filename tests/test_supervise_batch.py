@@ -8,8 +8,17 @@ from concurrent.futures import ProcessPoolExecutor
 import numpy as np
 import pytest
 
-from fdsc import (FDSC, Band, Piecewise, Plant, Sinusoids, SupervisedCase, Supervisor, UnstableRunWarning,
-                  supervise_batch)
+from fdsc import (
+    FDSC,
+    Band,
+    Piecewise,
+    Plant,
+    Sinusoids,
+    SupervisedCase,
+    Supervisor,
+    UnstableRunWarning,
+    supervise_batch,
+)
 from fdsc.supervisor import lqr_gain
 
 PLANT = Plant([[0.0, 1.0], [-4.0, -0.4]], [[0.0], [1.0]], [[0.0], [1.0]],

@@ -36,11 +36,11 @@ from .disturbance_law_draws import (
     DECIDE_EVERY,
     FRONT_FRACTIONS,
     FRONT_MAXITER,
-    MEASURED_DT,
-    MEASURED_VARIANTS,
     HYSTERESES,
     IDEAL_PAIR,
     LAMBDAS,
+    MEASURED_DT,
+    MEASURED_VARIANTS,
     NOISE_SHARE,
     NOISE_TONES,
     RESTART,
@@ -54,10 +54,12 @@ from .disturbance_law_draws import (
     draw,
     draw_result,
     front,
+    hold_check,
     law_run,
     law_supervisor,
     lqr,
     measured_result,
+    min_switching_summary,
     robust_result,
     step_check,
 )
@@ -69,7 +71,8 @@ __all__ = ["SEED", "N_RECORD", "N_FULL", "LAMBDAS", "HYSTERESES", "DECIDE_EVERY"
            "FRONT_MAXITER", "Draw", "draw", "front", "candidates", "lqr", "certificate", "draw_result",
            "Study", "study", "rho_t_family", "record_part", "full_study", "load_full", "LawRun",
            "law_run", "direct_realization", "N_ROBUST", "ROBUST_SNR_DB", "robustness",
-           "step_check", "MEASURED_DT", "MEASURED_VARIANTS", "measured_result", "measured_robustness"]
+           "step_check", "MEASURED_DT", "MEASURED_VARIANTS", "measured_result", "measured_robustness",
+           "hold_check", "min_switching_summary"]
 
 #: Draws per example in the record (half train, half test) and in the full study.
 N_RECORD, N_FULL = 12, 500
@@ -394,7 +397,8 @@ def measured_robustness(full: dict, *, n: int = N_ROBUST, executor=None) -> dict
     -------
     dict
         ``{example: {"draws", "dt", "variants": {name: {"median", "win_rate", "p95",
-        "switches_ratio", "diverged"}}}}``, each against the fixed gain chosen in advance run on
+        "switches_ratio", "diverged"}}, "min_switching": {"l2_bound", "rate", "candidates"}}}``,
+        each against the fixed gain chosen in advance run on
         the same plant; ``"exact"`` is the exact engine on the exact estimate, and
         ``switches_ratio`` a variant's switches over the exact law's.
     """
@@ -414,7 +418,8 @@ def measured_robustness(full: dict, *, n: int = N_ROBUST, executor=None) -> dict
                          "switches_ratio": float(sum(p[name]["switches"] for p in res)
                                                  / max(1, sum(p["exact"]["switches"] for p in res))),
                          "diverged": int(sum(p[name]["diverged"] for p in res))}
-        out[example] = {"draws": n, "dt": MEASURED_DT, "variants": per}
+        out[example] = {"draws": n, "dt": MEASURED_DT, "variants": per,
+                        "min_switching": min_switching_summary(example)}
     return out
 
 

@@ -588,3 +588,52 @@ def min_switching_certificate(example: str = "aircraft") -> fdsc.MinSwitchingCer
     ex = _example(example)
     _names, gains = candidates(example)
     return fdsc.min_switching([ex.plant.closed_loop(K) for K in gains])
+
+
+def hold_check(example: str, index: int, law: str, dts=(MEASURED_DT, MEASURED_DT / 2),
+               seed: int = SEED) -> dict:
+    """The law run on sampled measurements with the exact derivative at two steps, against the
+    exact run: how the hold of the estimate between samples costs with the step.
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+    index : int
+    law : str
+        ``law/realization/λ/h``.
+    dts : (float, float), optional
+        The sampling steps (s).
+    seed : int, optional
+
+    Returns
+    -------
+    dict
+        ``excess`` (the relative excess energy over the exact run at each step), ``same_switches``
+        (bool per step: the switch instants equal the exact run's).
+    """
+    ex = _example(example)
+    dr = draw(ex, np.random.default_rng([seed, index]))
+    sup, _shown, lam, h = law_supervisor(example, law)
+    exact = sup.prepare(dr.d, dr.horizon).run(forgetting=lam, hysteresis=h)
+    excess, same = [], []
+    for dt in dts:
+        r = sup.run_measured(dr.d, dr.horizon, dt, forgetting=lam, hysteresis=h)
+        excess.append(r.energy / exact.energy - 1.0)
+        same.append(bool(np.array_equal(r.switch_times, exact.switch_times)))
+    return {"dts": list(dts), "excess": excess, "same_switches": same}
+
+
+def min_switching_summary(example: str) -> dict:
+    """The min-switching certificate's numbers for the study's file.
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+
+    Returns
+    -------
+    dict
+        ``l2_bound`` (ρ), ``rate`` (γ of its Metzler matrix), ``candidates`` (names).
+    """
+    c = min_switching_certificate(example)
+    return {"l2_bound": c.l2_bound, "rate": c.rate, "candidates": list(candidates(example)[0])}
