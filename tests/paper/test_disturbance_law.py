@@ -7,6 +7,7 @@ import math
 import numpy as np
 import pytest
 
+import fdsc
 from fdsc.paper import disturbance_law as dl
 from fdsc.paper.baselines import aircraft_example
 from fdsc.paper.generic_example import generic_example
@@ -103,3 +104,33 @@ def test_the_record_entries_carry_every_field():
         # the least-energy fixed gain of each draw is at most the one chosen in advance
         assert s["median_ratio_vs_best_fixed_per_draw"] >= s["median_ratio_vs_fixed_in_advance"] * (1 - 1e-12)
         assert len(s["rho_t_ratio_vs_best_fixed"]) == (11 if example == "aircraft" else 21)
+
+
+def test_a_draw_on_sampled_measurements_reports_every_variant(monkeypatch):
+    from fdsc.paper import disturbance_law_robust as rb
+
+    ex = aircraft_example()
+    full = rb.draw(ex, np.random.default_rng([dl.SEED, 0]))
+    short = dl.Draw(fdsc.Piecewise(full.d.breaks[:3], full.d.parts[:2]), 30.0, full.dominant[:2],
+                    full.noise[:2])
+    monkeypatch.setattr(rb, "draw", lambda example, rng: short)
+    r = rb.measured_result("aircraft", 0, "cost/copies/1/0.1", "PassC-LF")
+    assert set(r) == {"exact", *rb.MEASURED_VARIANTS, "min_switching"}
+    assert not any(v["diverged"] for v in r.values())
+    # sampling at 1 ms moves the aircraft's energy by about a percent, no more
+    assert r["sampled"]["ratio"] == pytest.approx(r["exact"]["ratio"], rel=0.03)
+    # each variant divides by the fixed gain run on its own plant: a wrong A changes the ratio
+    assert r["A+10%"]["ratio"] != r["sampled"]["ratio"] and r["A-10%"]["ratio"] != r["sampled"]["ratio"]
+
+
+def test_the_study_file_holds_the_runs_on_measurements():
+    full = dl.load_full()
+    if full is None:
+        pytest.skip("the full study is not in this checkout")
+    for e in ("aircraft", "generic"):
+        m = full["measured"][e]
+        assert m["draws"] == dl.N_ROBUST and m["dt"] == dl.MEASURED_DT
+        assert set(m["variants"]) == {"exact", *dl.MEASURED_VARIANTS, "min_switching"}
+        assert m["min_switching"]["candidates"] == list(dl.candidates(e)[0])
+        # the exact row is the law of the full study on the same draws as the noise study
+        assert m["variants"]["exact"]["median"] == pytest.approx(full["robustness"][e]["exact_median"])
