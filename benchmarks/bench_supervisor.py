@@ -9,10 +9,14 @@ On the README's oscillator with its LF and HF gains (two modes), a piecewise dis
   steps of 1 ms over the wall time: what a stepping simulator would have to reach to match it);
 * **baseline**: ``fdsc.simulate_stream`` of one fixed loop over the same horizon at dt = 1 ms
   without the closed form (the compiled stepping loop): steps per second;
-* their **ratio** (law time over baseline time), which does not depend on the host's speed.
+* their **ratio** (law time over baseline time), which does not depend on the host's speed;
+* **measured**: the same law run causally on sampled measurements at dt = 1 ms
+  (``Supervisor.run_measured``, backward-difference derivative): steps per second, and its ratio
+  to the baseline.
 
 Its last line is JSON (``law_s``, ``law_equivalent_steps_per_s``, ``baseline_steps_per_s``,
-``ratio``, ``switches``, the host's CPUs and load).
+``ratio``, ``switches``, ``measured_steps_per_s``, ``measured_ratio``, ``measured_switches``, the
+host's CPUs and load).
 
 Usage: ``python benchmarks/bench_supervisor.py [--segments K] [--repeat R]``.
 """
@@ -58,12 +62,19 @@ def main(argv=None):
     base = lambda: fdsc.simulate_stream(loop, d, horizon, 1e-3, closed_form=False)  # noqa: E731
     base()
     _r, t_base = _best(base, args.repeat)
+    sup = fdsc.Supervisor(PLANT, GAINS, K0=K0)
+    measured = lambda: sup.run_measured(d, horizon, 1e-3, derivative="backward")  # noqa: E731
+    measured()
+    mrun, t_meas = _best(measured, args.repeat)
     out = {"horizon_s": horizon, "law_s": t_law, "law_equivalent_steps_per_s": steps / t_law,
            "baseline_steps_per_s": steps / t_base, "ratio": t_law / t_base,
-           "switches": run.switches, "cpus": os.cpu_count(), "load": os.getloadavg()[0]}
+           "switches": run.switches, "measured_steps_per_s": steps / t_meas,
+           "measured_ratio": t_meas / t_base, "measured_switches": mrun.switches,
+           "cpus": os.cpu_count(), "load": os.getloadavg()[0]}
     print(f"law: {t_law:.3f} s for {horizon:g} s ({steps / t_law:.3g} equivalent steps/s of 1 ms), "
           f"{run.switches} switches; stepping baseline: {steps / t_base:.3g} steps/s; "
-          f"ratio {t_law / t_base:.3g}")
+          f"ratio {t_law / t_base:.3g}; on sampled measurements: {steps / t_meas:.3g} steps/s "
+          f"(ratio {t_meas / t_base:.3g}), {mrun.switches} switches")
     print(json.dumps(out))
 
 

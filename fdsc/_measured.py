@@ -41,6 +41,8 @@ from ._blocks import _pair, pieces
 __all__ = []
 
 DERIVATIVES = ("exact", "backward")
+#: Steps between exact evaluations of the tones' oscillators (rotated in between).
+RESYNC = 512
 
 
 def _held(A, B, C, D, dt):
@@ -170,15 +172,15 @@ def run(sup, A_true, d, horizon, dt, x0, derivative, decay, h, first, dwell, sig
     mu = np.zeros((nb + 1, len(sup.gains)))
     big = np.zeros(nb)
     x = np.array(x0, dtype=float)
-    _loop(block, nb, dt, piece_start, W, AMP, PH, PJ, QJ, PM, QM, PC, fresh, read,
-          plant.A, A_true, plant.B1[:, 0], plant.B2, b1p, Kx, Kc, sup.K0 is not None,
+    _loop(block, nb, dt, piece_start, W, AMP, PH, np.cos(W * dt), np.sin(W * dt), PJ, QJ, PM, QM, PC,
+          fresh, read, plant.A, A_true, plant.B1[:, 0], plant.B2, b1p, Kx, Kc, sup.K0 is not None,
           derivative == "backward", sup.law == "band_power", decay, h, first, dwell, sigma0,
           x, out_e, sigma, mu, big)
     return out_e, sigma, mu, big, x
 
 
 @njit(cache=True)
-def _loop(block, nb, dt, piece_start, W, AMP, PH, PJ, QJ, PM, QM, PC, fresh, read,
+def _loop(block, nb, dt, piece_start, W, AMP, PH, RC, RS, PJ, QJ, PM, QM, PC, fresh, read,
           A, At, b1, B2, b1p, Kx, Kc, copies, backward, largest, decay, h, first, dwell, q,
           x, out_e, sigma, mu, big):
     n = x.shape[0]
@@ -207,19 +209,26 @@ def _loop(block, nb, dt, piece_start, W, AMP, PH, PJ, QJ, PM, QM, PC, fresh, rea
     for k in range(N):
         while piece_start[piece + 1] <= k:
             piece += 1
-        t = k * dt
+        # the tones' oscillators: from cos and sin at a piece's start and every RESYNC steps,
+        # rotated by the exact step rotation in between
         w = 0.0
-        for j in range(T):
-            a = AMP[piece, j]
-            if a != 0.0:
+        if (k - piece_start[piece]) % RESYNC == 0:
+            t = k * dt
+            for j in range(T):
+                a = AMP[piece, j]
                 arg = W[piece, j] * t + PH[piece, j]
                 cs[j] = a * math.cos(arg)
                 cs[T + j] = a * math.sin(arg)
                 w += cs[T + j]
-            else:
-                cs[j] = 0.0
-                cs[T + j] = 0.0
+        else:
+            for j in range(T):
+                c0, s0 = cs[j], cs[T + j]
+                cs[j] = c0 * RC[piece, j] - s0 * RS[piece, j]
+                cs[T + j] = s0 * RC[piece, j] + c0 * RS[piece, j]
+                w += cs[T + j]
         s = sigma_now
+        Qs = QJ[piece, s]
+        Ps = PJ[piece, s]
         # the control and the measured derivative
         for r in range(mu_u):
             acc_u = 0.0
@@ -275,13 +284,13 @@ def _loop(block, nb, dt, piece_start, W, AMP, PH, PJ, QJ, PM, QM, PC, fresh, rea
         for r in range(Wd):
             row = 0.0
             for c in range(Wd):
-                row += QJ[piece, s, r, c] * xi[c]
+                row += Qs[r, c] * xi[c]
             e += xi[r] * row
         out_e[k // block] += e
         for r in range(n + nc):
             row = 0.0
             for c in range(Wd):
-                row += PJ[piece, s, r, c] * xi[c]
+                row += Ps[r, c] * xi[c]
             xnew[r] = row
         # the other copies of the realization
         if copies:
