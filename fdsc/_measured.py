@@ -18,6 +18,9 @@ plant must be run together. Here they are, on a grid of step ``dt``:
 * ŵ_k is held over ``[t_k, t_{k+1})`` (a zero-order hold): every monitor and every copy of the
   realization steps exactly under the held input (Van Loan's block exponential of the system
   with ŵ as a constant state), and its output energy over the step is integrated exactly;
+* the copies of the realization start from x0, as in :class:`~fdsc.supervisor.Prepared`, the
+  monitors from rest; ŵ_k below the rounding of its own terms counts as 0 (an exact model and
+  derivative leave only rounding there, on which a relative hysteresis must not decide);
 * the plant, with the copy of the active candidate that the realization through copies feeds
   back, steps exactly under the true disturbance (its tones' oscillators in the state, as in
   :mod:`fdsc._blocks`) and the held ŵ, and its output energy is integrated exactly;
@@ -41,6 +44,8 @@ from ._blocks import _pair, pieces
 __all__ = []
 
 DERIVATIVES = ("exact", "backward")
+#: ŵ is set to 0 where it is below this multiple of the rounding scale of its terms.
+EPS_FLOOR = 64 * np.finfo(float).eps
 #: Steps between exact evaluations of the tones' oscillators (rotated in between).
 RESYNC = 512
 
@@ -156,7 +161,9 @@ def run(sup, A_true, d, horizon, dt, x0, derivative, decay, h, first, dwell, sig
     plant = sup.plant
     block = round(sup.decide_every / dt)
     nb = round(horizon / sup.decide_every)
-    R, half = sup.restart_blocks, max(1, sup.restart_blocks // 2)
+    # a restart period beyond twice the horizon restarts neither bank after t = 0
+    R = min(sup.restart_blocks, 2 * (nb + 1))
+    half = max(1, R // 2)
     fresh = np.zeros((2, nb + 1), dtype=np.bool_)       # as in Prepared.mu
     fresh[0, np.arange(0, nb, R)] = True
     fresh[1, np.r_[0, np.arange(half, nb, R)]] = True
@@ -197,6 +204,10 @@ def _loop(block, nb, dt, piece_start, W, AMP, PH, RC, RS, PJ, QJ, PM, QM, PC, fr
     acc = np.zeros((2, nI))
     bank = np.zeros((2, nI))
     cop = np.zeros((nI, n))
+    if copies:
+        for i in range(nI):
+            for r in range(n):
+                cop[i, r] = x[r]
     xprev = x.copy()
     xnew = np.zeros(n + nc)
     u = np.zeros(mu_u)
@@ -238,6 +249,7 @@ def _loop(block, nb, dt, piece_start, W, AMP, PH, RC, RS, PJ, QJ, PM, QM, PC, fr
                     acc_u += Kc[s, r, c] * cop[s, c]
             u[r] = acc_u
         what = 0.0
+        floor = 0.0
         for r in range(n):
             ax = 0.0
             at = 0.0
@@ -252,6 +264,11 @@ def _loop(block, nb, dt, piece_start, W, AMP, PH, RC, RS, PJ, QJ, PM, QM, PC, fr
             else:
                 xd = at + b1[r] * w + bu
             what += b1p[r] * (xd - ax - bu)
+            floor += abs(b1p[r]) * (abs(xd) + abs(ax) + abs(bu))
+        # below the rounding of the difference, ŵ is 0 (an exact model and derivative give
+        # ŵ = d exactly up to it; a relative hysteresis must not decide on rounding)
+        if abs(what) <= EPS_FLOOR * floor:
+            what = 0.0
         # the monitors, both banks
         for b in range(2):
             for i in range(nI):
@@ -313,7 +330,9 @@ def _loop(block, nb, dt, piece_start, W, AMP, PH, RC, RS, PJ, QJ, PM, QM, PC, fr
             kb = (k + 1) // block - 1
             top = 0.0
             for r in range(n):
-                top = max(top, abs(x[r]))
+                ax_r = abs(x[r])
+                if not ax_r <= top:         # NaN propagates
+                    top = ax_r
             big[kb] = top
             p = kb + 1
             for b in range(2):

@@ -29,7 +29,7 @@ from dataclasses import dataclass
 import cvxpy as cp
 import numpy as np
 
-from ._validation import frozen_array
+from ._validation import as_positive, as_vector, frozen_array
 from .exceptions import InfeasibleError, SolverError, VerificationError
 from .lmi import _sym, solve_checked
 from .plant import LTISystem
@@ -91,8 +91,13 @@ class MinSwitchingCertificate:
         Returns
         -------
         int
+
+        Raises
+        ------
+        ValueError
+            If x is not a finite vector of the loops' size.
         """
-        x = np.asarray(x, dtype=float)
+        x = np.array(as_vector("x", x, self.P[0].shape[0]))
         return int(np.argmin([x @ p @ x for p in self.P]))
 
 
@@ -149,8 +154,8 @@ def min_switching(loops, *, rates=DEFAULT_RATES, margin: float = 1e-6) -> MinSwi
     TypeError
         If ``loops`` is not a sequence of LTISystem.
     ValueError
-        If fewer than two loops are given, they differ in size, B or D, a rate is not positive,
-        or ``margin`` is not positive.
+        If fewer than two loops are given, they differ in size, B or D, ``rates`` is not a
+        non-empty sequence of positive finite numbers, or ``margin`` is not one.
     InfeasibleError
         If no rate gives a certificate (the message names the last solver status).
 
@@ -178,11 +183,11 @@ def min_switching(loops, *, rates=DEFAULT_RATES, margin: float = 1e-6) -> MinSwi
         worst = float(np.max(np.linalg.eigvals(lp.A).real))
         if worst >= 0:
             raise ValueError(f"loops[{k}] must be Hurwitz, but has an eigenvalue with real part {worst:.4g}")
-    rates = [float(g) for g in np.atleast_1d(np.asarray(rates, dtype=float))]
-    if not rates or any(not (g > 0 and np.isfinite(g)) for g in rates):
-        raise ValueError(f"rates must be positive and finite, but found {rates}")
-    if not (margin > 0 and np.isfinite(margin)):
-        raise ValueError(f"margin must be positive and finite, but found {margin!r}")
+    if isinstance(rates, str | bytes) or not hasattr(rates, "__len__") or np.ndim(rates) != 1 \
+            or not len(rates):
+        raise ValueError(f"rates must be a non-empty sequence of positive rates, but found {rates!r}")
+    rates = [as_positive(f"rates[{k}]", g) for k, g in enumerate(rates)]
+    margin = as_positive("margin", margin)
     best, last = None, None
     for g in rates:
         found = _solve(loops, g, margin)

@@ -14,6 +14,7 @@ and the warnings raised on a worker are raised again by the caller, naming the c
 from __future__ import annotations
 
 import warnings
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 
 from ._validation import as_count, check_type
@@ -100,9 +101,9 @@ def supervise_batch(cases, *, executor=None, chunksize: int | None = None) -> li
     Parameters
     ----------
     cases : sequence of SupervisedCase
-    executor : concurrent.futures.Executor or dask.distributed.Client, optional
-        Where to run them (as in :func:`fdsc.simulate_batch`); default: here, one after the
-        other.
+    executor : concurrent.futures.ProcessPoolExecutor or dask.distributed.Client, optional
+        Where to run them (as in :func:`fdsc.simulate_batch`, but not on threads: the runs hold
+        the interpreter's lock); default: here, one after the other.
     chunksize : int, optional
         Cases per chunk sent to the executor (default: the cases split into 16 chunks).
 
@@ -114,8 +115,8 @@ def supervise_batch(cases, *, executor=None, chunksize: int | None = None) -> li
     Raises
     ------
     TypeError
-        If ``cases`` is not a non-empty sequence of SupervisedCase, or ``executor`` is neither an
-        executor nor a Dask client.
+        If ``cases`` is not a non-empty sequence of SupervisedCase, or ``executor`` is a thread
+        pool, or neither an executor nor a Dask client.
     ValueError
         If ``chunksize`` is not a positive integer.
     Exception
@@ -151,6 +152,10 @@ def supervise_batch(cases, *, executor=None, chunksize: int | None = None) -> li
     else:
         from .stream import _as_executor
 
+        if isinstance(executor, ThreadPoolExecutor):
+            raise TypeError("executor must be a process pool or a Dask client, not a ThreadPoolExecutor: the "
+                            "runs hold the interpreter's lock (threads would not run them in parallel) and "
+                            "the warnings of concurrent threads cannot be told apart")
         pool = _as_executor(executor)
         size = -(-len(cases) // 16) if chunksize is None else chunksize
         chunks = [(list(cases[a:a + size]), a) for a in range(0, len(cases), size)]

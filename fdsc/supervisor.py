@@ -53,8 +53,15 @@ import numpy as np
 from numba import njit
 
 from . import _divergence
+from ._defaults import DEFAULT_MAX_MEMORY
 from ._validation import as_nonnegative, as_positive, as_vector, check_type
-from .exceptions import DimensionError, EnergyOverflowError, UnstableRunWarning
+from .exceptions import (
+    DimensionError,
+    EnergyOverflowError,
+    MemoryLimitError,
+    UnstableError,
+    UnstableRunWarning,
+)
 from .signals import Piecewise, Sinusoids
 
 __all__ = ["SupervisedRun", "Supervisor", "Prepared", "LAWS", "supervise", "band_filter",
@@ -286,7 +293,7 @@ def band_filter(band):
 LAWS = ("cost", "band_power")
 #: A stepped run (``supervise(dt=...)``) warns when a loop's fastest mode λ has |λ| dt above this:
 #: the transients at the switches are then shorter than a step.
-STIFF_STEP = 10.0
+STIFF_STEP = 0.5
 #: The band edges (rad/s) a monitoring filter resolves: [1 / MAX_FILTER_EDGE, MAX_FILTER_EDGE].
 MAX_FILTER_EDGE = 1e6
 
@@ -540,8 +547,13 @@ class Supervisor:
         nm = len(self.gains)
         if isinstance(sigma0, bool) or not isinstance(sigma0, int | np.integer) or not 0 <= sigma0 < nm:
             raise ValueError(f"sigma0 must be a candidate's index in [0, {nm}), but found {sigma0!r}")
-        first = max(1, math.ceil(as_nonnegative("warmup", warmup) / self.decide_every - 1e-9))
-        dwell = math.ceil(as_nonnegative("min_dwell", min_dwell) / self.decide_every - 1e-9)
+        first = min(nb + 1, max(1, math.ceil(as_nonnegative("warmup", warmup) / self.decide_every - 1e-9)))
+        dwell = min(nb + 1, math.ceil(as_nonnegative("min_dwell", min_dwell) / self.decide_every - 1e-9))
+        need = 8.0 * nb * (len(self.gains) + 4)
+        if need > DEFAULT_MAX_MEMORY:
+            raise MemoryLimitError(f"run_measured: {nb} decision intervals need about {need / 2**30:.3g} GiB "
+                                   f"for the monitoring signals, over the limit of "
+                                   f"{DEFAULT_MAX_MEMORY / 2**30:.3g} GiB; shorten the horizon")
         A_modes, B_modes = _measured.modes(self, A_t)
         worst = max(float(np.max(np.linalg.eigvals(M).real)) for M in A_modes)
         if worst >= 0:
@@ -555,7 +567,20 @@ class Supervisor:
         limit = _divergence.threshold(A_modes, B_modes, start, d)
         change = np.flatnonzero(np.diff(sigma)) + 1
         diverged = None
+        if not np.all(np.isfinite(big)):
+            k = int(np.flatnonzero(~np.isfinite(big))[0])
+            t = (k + 1) * self.decide_every
+            raise UnstableError(f"run_measured: the state overflowed by t = {t:g} s; the loop diverges and "
+                                "no finite energy summarizes it")
         over = np.flatnonzero(~(big <= limit))
+        if not np.all(np.isfinite(mu)):
+            if worst >= 0 or over.size:
+                raise UnstableError("run_measured: a monitoring signal overflowed while the loop diverges "
+                                    "(the estimate carries the growing state); no finite energy "
+                                    "summarizes it")
+            raise EnergyOverflowError("run_measured: a monitoring signal exceeds the float range (about "
+                                      "1.8e308), so the law cannot compare them: scale the disturbance "
+                                      "(or x0) down")
         if over.size:
             diverged = float((over[0] + 1) * self.decide_every)
             bound = limit / _divergence.SAFETY
@@ -563,7 +588,7 @@ class Supervisor:
                                               bound), UnstableRunWarning, stacklevel=2)
         elif not np.all(np.isfinite(e)):
             raise EnergyOverflowError("run_measured: the state stays finite but the energy exceeds the "
-                                      "float range (about 1.8e308): scale the disturbance down")
+                                      "float range (about 1.8e308): scale the disturbance (or x0) down")
         points = np.arange(nb + 1) * self.decide_every
         points[-1] = horizon
         share = np.bincount(sigma, minlength=nm) / sigma.size
@@ -661,7 +686,9 @@ class Prepared:
             check_type("estimate", estimate, Sinusoids | Piecewise, "an fdsc.Sinusoids or fdsc.Piecewise")
         gm = g if estimate is None else Grid(estimate, self.points)
         # the monitors' energies per decision interval, for each bank of restarts
-        R, half = sup.restart_blocks, max(1, sup.restart_blocks // 2)
+        # a restart period beyond twice the horizon restarts neither bank after t = 0
+        R = min(sup.restart_blocks, 2 * (nb + 1))
+        half = max(1, R // 2)
         self.starts = (np.arange(0, nb, R), np.r_[0, np.arange(half, nb, R)])
         self.E = np.zeros((2, nb, len(sup.monitors)))
         if sup.law == "cost":                    # the monitors are the closed loops: one table
@@ -765,8 +792,8 @@ class Prepared:
         if isinstance(sigma0, bool) or not isinstance(sigma0, int | np.integer) or not 0 <= sigma0 < nm:
             raise ValueError(f"sigma0 must be a candidate's index in [0, {nm}), but found {sigma0!r}")
         step = self.sup.decide_every
-        first = max(1, math.ceil(as_nonnegative("warmup", warmup) / step - 1e-9))
-        dwell = math.ceil(as_nonnegative("min_dwell", min_dwell) / step - 1e-9)
+        first = min(self.n_blocks + 1, max(1, math.ceil(as_nonnegative("warmup", warmup) / step - 1e-9)))
+        dwell = min(self.n_blocks + 1, math.ceil(as_nonnegative("min_dwell", min_dwell) / step - 1e-9))
         # the cost law compares μ (least wins); the band-power law compares 1/μ (largest μ wins)
         with np.errstate(divide="ignore"):
             cost = mu if self.sup.law == "cost" else 1.0 / mu
@@ -856,6 +883,7 @@ class Prepared:
         SupervisedRun
         """
         mu = self.mu(forgetting)
+        _check_mu(mu, "run")
         sigma = self.decide(mu, hysteresis=hysteresis, warmup=warmup, min_dwell=min_dwell, sigma0=sigma0)
         r = self.run_sequence(sigma)
         return SupervisedRun(r.horizon, r.dt, r.energy, r.input_energy, r.switch_times, r.sequence,
@@ -1047,8 +1075,16 @@ def supervise(plant, gains, d, horizon: float, dt: float | None = None, *, law: 
         raise ValueError(f"decide_every must be a whole number of steps of dt = {dt:g} s, but found "
                          f"{sup.decide_every!r}")
     mu = prep.mu(forgetting)
+    _check_mu(mu, "supervise")
     sigma = prep.decide(mu, hysteresis=hysteresis, warmup=warmup, min_dwell=min_dwell, sigma0=sigma0)
     return _run_on_grid(prep, sigma, mu, dt)
+
+
+def _check_mu(mu, where):
+    """Refuse monitoring signals that overflowed (the fading sum of finite energies)."""
+    if not np.all(np.isfinite(mu)):
+        raise EnergyOverflowError(f"{where}: a monitoring signal exceeds the float range (about 1.8e308), "
+                                  "so the law cannot compare them: scale the disturbance (or x0) down")
 
 
 def _run_on_grid(prep, sigma, mu, dt):

@@ -7,7 +7,16 @@ import warnings
 import numpy as np
 import pytest
 
-from fdsc import Piecewise, Plant, Sinusoids, Supervisor, UnstableRunWarning
+from fdsc import (
+    Band,
+    EnergyOverflowError,
+    Piecewise,
+    Plant,
+    Sinusoids,
+    Supervisor,
+    UnstableError,
+    UnstableRunWarning,
+)
 from fdsc.supervisor import lqr_gain
 
 PLANT = Plant([[0.0, 1.0], [-4.0, -0.4]], [[0.0], [1.0]], [[0.0], [1.0]],
@@ -99,3 +108,40 @@ def test_bad_input_is_refused_by_name(kwargs, match):
     with pytest.raises((ValueError, TypeError), match=match):
         Supervisor(PLANT, GAINS).run_measured(args.pop("d"), args.pop("horizon"), args.pop("dt"),
                                               **args)
+
+
+def test_without_a_disturbance_the_exact_estimate_is_zero_and_nothing_switches():
+    # d = 0 from x0 ≠ 0 with an exact model: ŵ is 0 up to rounding, which must not decide
+    zero = Sinusoids([0.0], [1.0])
+    for K0 in (None, lqr_gain(PLANT)):
+        sup = Supervisor(PLANT, GAINS, K0=K0)
+        run = sup.run_measured(zero, 10.0, 1e-3, x0=[2.0, -1.0])
+        exact = sup.run(zero, 10.0, x0=[2.0, -1.0])
+        assert run.switches == exact.switches == 0 and np.all(run.mu == 0.0)
+        # the copies start from x0, as in the exact engine: the same run
+        assert run.energy == pytest.approx(exact.energy, rel=1e-9)
+
+
+def test_monitoring_signals_beyond_the_float_range_are_refused():
+    huge = Piecewise(D.breaks, [Sinusoids(p.amplitudes * 1e155, p.frequencies, p.phases) for p in D.parts])
+    sup = Supervisor(PLANT, GAINS, law="band_power", bands=[Band.lf(2.0), Band.hf(8.0)], restart=60.0)
+    with pytest.raises(EnergyOverflowError, match="monitoring signal"):
+        sup.run_measured(huge, 40.0, 1e-2, warmup=2.0)
+    with pytest.raises(EnergyOverflowError, match="monitor"):
+        sup.run(huge, 40.0, warmup=2.0)
+
+
+def test_a_loop_that_overflows_is_refused_not_summarized():
+    sup = Supervisor(PLANT, GAINS)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UnstableRunWarning)
+        with pytest.raises(UnstableError, match="diverges"):
+            sup.run_measured(D, 200.0, 1e-2, true_A=[[0.0, 1.0], [4.0, 2.0]])
+
+
+def test_very_long_warmups_dwells_and_restarts_mean_never():
+    sup = Supervisor(PLANT, GAINS, restart=1e300)
+    assert sup.run_measured(D, 4.0, 1e-3, warmup=1e20).switches == sup.run(D, 4.0, warmup=1e20).switches == 0
+    # the dwell counts from the last switch, not from t = 0: one switch at most
+    a, b = sup.run_measured(D, 40.0, 1e-3, min_dwell=1e20), sup.run(D, 40.0, min_dwell=1e20)
+    assert a.switches == b.switches == 1

@@ -45,6 +45,12 @@ def test_the_law_stays_within_its_bound_and_the_max_law_diverges(cert, w):
         simulate_stream(LOOPS, d, 40.0, 1e-3, law_weights=[-W for W in cert.law_weights()])
 
 
+def test_choose_refuses_a_state_it_cannot_score(cert):
+    for bad in ([np.nan, 0.0], [1.0, 2.0, 3.0], None):
+        with pytest.raises((ValueError, TypeError)):
+            cert.choose(bad)
+
+
 def test_the_law_picks_the_least_quadratic_form(cert):
     rng = np.random.default_rng(0)
     for x in rng.standard_normal((20, 2)):
@@ -73,9 +79,13 @@ def test_a_rate_that_forces_a_common_lyapunov_function_is_infeasible():
     (LOOPS[0], {}, TypeError, "list or tuple of fdsc.LTISystem"),
     ([LOOPS[0], LTISystem(A1, 2 * B, C, D)], {}, ValueError, r"loops\[1\] differs"),
     ([LOOPS[0], LTISystem(-A1, B, C, D)], {}, ValueError, r"loops\[1\] must be Hurwitz"),
-    (LOOPS, {"rates": (0.0,)}, ValueError, "rates must be positive"),
-    (LOOPS, {"rates": ()}, ValueError, "rates must be positive"),
+    (LOOPS, {"rates": (0.0,)}, ValueError, r"rates\[0\] must be a positive"),
+    (LOOPS, {"rates": ()}, ValueError, "rates must be a non-empty sequence"),
+    (LOOPS, {"rates": "fast"}, ValueError, "rates must be a non-empty sequence"),
+    (LOOPS, {"rates": [[1.0]]}, ValueError, "rates must be a non-empty sequence"),
+    (LOOPS, {"rates": [1.0, True]}, (ValueError, TypeError), r"rates\[1\]"),
     (LOOPS, {"margin": -1.0}, ValueError, "margin"),
+    (LOOPS, {"margin": None}, (ValueError, TypeError), "margin"),
 ])
 def test_bad_input_is_refused_by_name(loops, kwargs, error, match):
     with warnings.catch_warnings():

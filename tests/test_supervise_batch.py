@@ -3,7 +3,7 @@ made one by one (here and on a process pool), warnings and errors name their cas
 design's supervisor is the Supervisor of its gains and bands."""
 
 import warnings
-from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 
 import numpy as np
 import pytest
@@ -74,6 +74,7 @@ def test_warnings_and_errors_name_their_case():
     ([object()], {}, TypeError, r"cases\[0\]"),
     (None, {"chunksize": 0}, ValueError, "chunksize"),
     (None, {"executor": object()}, TypeError, "executor"),
+    (None, {"executor": ThreadPoolExecutor(1)}, TypeError, "not a ThreadPoolExecutor"),
 ])
 def test_bad_batches_are_refused_by_name(cases, kwargs, error, match):
     cases = _cases()[:1] if cases is None else cases

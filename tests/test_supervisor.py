@@ -197,7 +197,7 @@ def test_a_stepped_run_that_switches_a_stiff_loop_warns():
         warnings.simplefilter("error", RuntimeWarning)
         supervise(cheap, stiff, TWO, 100.0)                     # exact: no warning
         # through copies a switch excites only A + B2 K0; the stiff copy runs on ŵ throughout
-        supervise(cheap, stiff, TWO, 100.0, 1e-2, K0=lqr_gain(cheap))
+        supervise(cheap, stiff, TWO, 100.0, 1e-2, K0=lqr_gain(PLANT))
         supervise(cheap, stiff, TWO, 100.0, 1e-2, sigma0=1, hysteresis=1e9)   # never switches to it
         supervise(PLANT, GAINS, TWO, 100.0, 1e-2)               # not stiff: no warning
 
