@@ -399,11 +399,14 @@ def measured_robustness(full: dict, *, n: int = N_ROBUST, executor=None) -> dict
     -------
     dict
         ``{example: {"draws", "dt", "variants": {name: {"median", "win_rate", "p95",
-        "switches_ratio", "diverged"}}, "min_switching": {"l2_bound", "rate", "candidates"}}}``,
+        "switches_ratio", "diverged"}}, "min_switching": {"l2_bound", "rate", "candidates"},
+        "commit"}}`` (the commit it was computed at),
         each against the fixed gain chosen in advance run on
         the same plant; ``"exact"`` is the exact engine on the exact estimate, and
         ``switches_ratio`` a variant's switches over the exact law's.
     """
+    from .environment import build_commit
+
     n = as_count("n", n, 1)
     out = {}
     for example in ("aircraft", "generic"):
@@ -421,7 +424,7 @@ def measured_robustness(full: dict, *, n: int = N_ROBUST, executor=None) -> dict
                                                  / max(1, sum(p["exact"]["switches"] for p in res))),
                          "diverged": int(sum(p[name]["diverged"] for p in res))}
         out[example] = {"draws": n, "dt": MEASURED_DT, "variants": per,
-                        "min_switching": min_switching_summary(example)}
+                        "min_switching": min_switching_summary(example), "commit": build_commit()}
     return out
 
 

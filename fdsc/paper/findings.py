@@ -11,7 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .comparators import COMPARATORS, best_fixed
-from .prose import count, num, pct, times
+from .prose import count, num, pct, span, times
 from .record import PAPER_FIGURES, figure_status
 
 __all__ = ["Findings", "findings", "law_sentence", "PRINTED_BOUNDS"]
@@ -169,13 +169,28 @@ def law_sentence(law):
         oracle = r["oracle_median_ratio_vs_fixed_in_advance"]
         against = f"the fixed gain chosen in advance ({r['fixed_in_advance']})"
         if ratio < 1 and oracle < 0.95:
-            parts.append(f"on the {example} example it pays: median energy {times(ratio)} that of "
-                         f"{against}, less on {pct(win)} of {count(r['draws_test'])} test draws")
+            text = (f"on the {example} example it pays: median energy {times(ratio)} that of "
+                    f"{against}, less on {pct(win)} of {count(r['draws_test'])} test draws")
         else:
-            parts.append(f"on the {example} example it cannot pay much: median {times(ratio)} "
-                         f"{against}, because even a clairvoyant per-segment oracle reaches only "
-                         f"{times(oracle)}")
+            text = (f"on the {example} example it gains little: median {times(ratio)} {against}, "
+                    f"where a clairvoyant per-segment oracle that switches at the breaks reaches "
+                    f"{times(oracle)}")
+        parts.append(text + _measured_clause(r.get("measured")))
     return "; ".join(parts)
+
+
+def _measured_clause(m):
+    """How much of the gain survives an estimate from sampled measurements, or ``""``."""
+    if not m:
+        return ""
+    med = [v["median"] for k, v in m["variants"].items() if k not in ("exact", "min_switching")]
+    below = sum(x < 1 for x in med)
+    where = f"on sampled measurements (medians {span(min(med), max(med), fmt=times)})"
+    if below == len(med):
+        return f", and keeps it {where}"
+    if 2 * below <= len(med):
+        return f", and loses it {where}"
+    return f", and keeps most of it {where}"
 
 
 def _law(record):
@@ -183,7 +198,11 @@ def _law(record):
 
     full = load_full()
     if full is not None:
-        return {e: full[e] for e in ("generic", "aircraft")}
+        out = {e: dict(full[e]) for e in ("generic", "aircraft")}
+        for e in out:
+            if "measured" in full:
+                out[e]["measured"] = full["measured"][e]
+        return out
     rec = _entries(record)["supervisor"]["recomputed"]
     return {e: rec[e] for e in ("generic", "aircraft")}
 
