@@ -57,6 +57,7 @@ def noisy_estimate(example, dr: Draw, snr_db: float, rng: np.random.Generator) -
 
     Examples
     --------
+    >>> from fdsc.paper.baselines import aircraft_example
     >>> ex = aircraft_example()
     >>> dr = draw(ex, np.random.default_rng(0))
     >>> w = noisy_estimate(ex, dr, 20.0, np.random.default_rng(1))
