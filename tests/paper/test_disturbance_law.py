@@ -114,6 +114,10 @@ def test_a_draw_on_sampled_measurements_reports_every_variant(monkeypatch):
     short = dl.Draw(fdsc.Piecewise(full.d.breaks[:3], full.d.parts[:2]), 30.0, full.dominant[:2],
                     full.noise[:2])
     monkeypatch.setattr(rb, "draw", lambda example, rng: short)
+    # the certificate at one rate of its grid (the grid search is tested in test_min_switching)
+    names, gains = dl.candidates("aircraft")
+    cert = fdsc.min_switching([ex.plant.closed_loop(K) for K in gains], rates=(316.2,))
+    monkeypatch.setattr(rb, "min_switching_certificate", lambda example: cert)
     r = rb.measured_result("aircraft", 0, "cost/copies/1/0.1", "PassC-LF")
     assert set(r) == {"exact", *rb.MEASURED_VARIANTS, "min_switching"}
     assert not any(v["diverged"] for v in r.values())
