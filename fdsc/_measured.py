@@ -161,16 +161,13 @@ def run(sup, A_true, d, horizon, dt, x0, derivative, decay, h, first, dwell, sig
     plant = sup.plant
     block = round(sup.decide_every / dt)
     nb = round(horizon / sup.decide_every)
-    # a restart period beyond twice the horizon restarts neither bank after t = 0
-    R = min(sup.restart_blocks, 2 * (nb + 1))
-    half = max(1, R // 2)
-    fresh = np.zeros((2, nb + 1), dtype=np.bool_)       # as in Prepared.mu
-    fresh[0, np.arange(0, nb, R)] = True
-    fresh[1, np.r_[0, np.arange(half, nb, R)]] = True
-    k = np.arange(nb + 1)
-    ages = [k - np.flatnonzero(f)[np.searchsorted(np.flatnonzero(f), k, side="right") - 1]
-            for f in fresh]
-    read = np.where(ages[0] >= ages[1], 0, 1).astype(np.int64)
+    from .supervisor import _bank_starts, _older_bank
+
+    starts = _bank_starts(nb, sup.restart_blocks)       # as in Prepared
+    fresh = np.zeros((2, nb + 1), dtype=np.bool_)
+    for b, st in enumerate(starts):
+        fresh[b, st] = True
+    read = _older_bank(starts, nb)
     b1p = np.linalg.pinv(plant.B1)[0]
     Kx = np.array(sup.gains) if sup.K0 is None else np.array([sup.K0] * len(sup.gains))
     Kc = np.array(sup.gains) - Kx

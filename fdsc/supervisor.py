@@ -523,6 +523,7 @@ class Supervisor:
         ([0, 1], True)
         """
         from . import _measured
+        from ._blocks import Grid
         from ._simulate_kernel import check_resolved
         from ._validation import as_choice, as_matrix
 
@@ -536,19 +537,13 @@ class Supervisor:
         if block < 1 or abs(block * dt - self.decide_every) > 1e-9 * self.decide_every:
             raise ValueError(f"dt must divide decide_every = {self.decide_every:g} s into whole steps, "
                              f"but found {dt!r}")
-        nb = round(horizon / self.decide_every)
-        if nb < 1 or abs(nb * self.decide_every - horizon) > 1e-9 * horizon:
-            raise ValueError(f"horizon must be a whole number of decision intervals (decide_every = "
-                             f"{self.decide_every:g} s), but found {horizon!r}")
+        nb = _n_blocks(horizon, self.decide_every)
         check_resolved(d, dt, "run_measured: ")
         x0 = np.zeros(n) if x0 is None else np.array(as_vector("x0", x0, n))
         lam = as_positive("forgetting", forgetting)
         h = as_nonnegative("hysteresis", hysteresis)
         nm = len(self.gains)
-        if isinstance(sigma0, bool) or not isinstance(sigma0, int | np.integer) or not 0 <= sigma0 < nm:
-            raise ValueError(f"sigma0 must be a candidate's index in [0, {nm}), but found {sigma0!r}")
-        first = min(nb + 1, max(1, math.ceil(as_nonnegative("warmup", warmup) / self.decide_every - 1e-9)))
-        dwell = min(nb + 1, math.ceil(as_nonnegative("min_dwell", min_dwell) / self.decide_every - 1e-9))
+        first, dwell = _schedule(nb, self.decide_every, warmup, min_dwell, sigma0, nm)
         need = 8.0 * nb * (len(self.gains) + 4)
         if need > DEFAULT_MAX_MEMORY:
             raise MemoryLimitError(f"run_measured: {nb} decision intervals need about {need / 2**30:.3g} GiB "
@@ -592,17 +587,51 @@ class Supervisor:
         points = np.arange(nb + 1) * self.decide_every
         points[-1] = horizon
         share = np.bincount(sigma, minlength=nm) / sigma.size
-        return SupervisedRun(horizon, dt, float(e.sum()), _input_energy(d, horizon),
+        input_energy = _input_energy(Grid(d, np.array([0.0, horizon])))
+        return SupervisedRun(horizon, dt, float(e.sum()), input_energy,
                              change * self.decide_every, np.r_[sigma[:1], sigma[change]], share, x,
                              points, mu, diverged)
 
 
-def _input_energy(d, horizon) -> float:
-    """``∫₀^horizon d²``, exactly."""
-    from ._blocks import Grid
+def _input_energy(grid) -> float:
+    """``∫ d²`` over a grid's steps, exactly."""
+    return float(grid.run(grid.tables([_dummy_input()]), 0, False, np.zeros(1))[0].sum())
 
-    g = Grid(d, np.array([0.0, float(horizon)]))
-    return float(g.run(g.tables([_dummy_input()]), 0, False, np.zeros(1))[0].sum())
+
+def _n_blocks(horizon, decide_every) -> int:
+    """The decision intervals in ``horizon``, refused unless it is a whole number of them."""
+    nb = round(horizon / decide_every)
+    if nb < 1 or abs(nb * decide_every - horizon) > 1e-9 * horizon:
+        raise ValueError(f"horizon must be a whole number of decision intervals (decide_every = "
+                         f"{decide_every:g} s), but found {horizon!r}")
+    return nb
+
+
+def _bank_starts(nb, restart_blocks) -> tuple:
+    """The decision intervals at which each of the two banks of monitors restarts from rest:
+    every R intervals, the second bank half a period later (a period beyond twice the horizon
+    restarts neither bank after t = 0)."""
+    R = min(restart_blocks, 2 * (nb + 1))
+    half = max(1, R // 2)
+    return (np.arange(0, nb, R), np.r_[0, np.arange(half, nb, R)])
+
+
+def _older_bank(starts, nb) -> np.ndarray:
+    """(nb + 1,) the bank the law reads at each decision point: the one restarted longer ago
+    (bank 0 on a tie)."""
+    k = np.arange(nb + 1)
+    ages = [k - st[np.searchsorted(st, k, side="right") - 1] for st in starts]
+    return np.where(ages[0] >= ages[1], 0, 1).astype(np.int64)
+
+
+def _schedule(nb, step, warmup, min_dwell, sigma0, n_candidates) -> tuple:
+    """``(first, dwell)`` in decision intervals (clamped to the run), with ``sigma0`` checked."""
+    if isinstance(sigma0, bool) or not isinstance(sigma0, int | np.integer) \
+            or not 0 <= sigma0 < n_candidates:
+        raise ValueError(f"sigma0 must be a candidate's index in [0, {n_candidates}), but found {sigma0!r}")
+    first = min(nb + 1, max(1, math.ceil(as_nonnegative("warmup", warmup) / step - 1e-9)))
+    dwell = min(nb + 1, math.ceil(as_nonnegative("min_dwell", min_dwell) / step - 1e-9))
+    return first, dwell
 
 
 @njit(cache=True)
@@ -672,10 +701,7 @@ class Prepared:
 
         check_type("d", d, Sinusoids | Piecewise, "an fdsc.Sinusoids or fdsc.Piecewise")
         horizon = as_positive("horizon", horizon)
-        nb = round(horizon / sup.decide_every)
-        if nb < 1 or abs(nb * sup.decide_every - horizon) > 1e-9 * horizon:
-            raise ValueError(f"horizon must be a whole number of decision intervals (decide_every = "
-                             f"{sup.decide_every:g} s), but found {horizon!r}")
+        nb = _n_blocks(horizon, sup.decide_every)
         n = sup.plant.n_states
         self.sup, self.d, self.horizon, self.n_blocks = sup, d, float(horizon), nb
         self.x0 = np.zeros(n) if x0 is None else np.array(as_vector("x0", x0, n))
@@ -686,10 +712,7 @@ class Prepared:
             check_type("estimate", estimate, Sinusoids | Piecewise, "an fdsc.Sinusoids or fdsc.Piecewise")
         gm = g if estimate is None else Grid(estimate, self.points)
         # the monitors' energies per decision interval, for each bank of restarts
-        # a restart period beyond twice the horizon restarts neither bank after t = 0
-        R = min(sup.restart_blocks, 2 * (nb + 1))
-        half = max(1, R // 2)
-        self.starts = (np.arange(0, nb, R), np.r_[0, np.arange(half, nb, R)])
+        self.starts = _bank_starts(nb, sup.restart_blocks)
         self.E = np.zeros((2, nb, len(sup.monitors)))
         if sup.law == "cost":                    # the monitors are the closed loops: one table
             shared = gm.tables([_abcd(m) for m in sup.monitors])
@@ -707,7 +730,7 @@ class Prepared:
             raise EnergyOverflowError("prepare: a monitor's energy is not finite (a candidate's "
                                       "loop, or the disturbance's scale, is beyond what floats "
                                       "integrate: its energy exceeds about 1e308)")
-        self.input_energy = float(g.run(g.tables([_dummy_input()]), 0, False, np.zeros(1))[0].sum())
+        self.input_energy = _input_energy(g)
         self.loops = sup.switched_loops()
         if sup.law == "cost" and sup.K0 is None and estimate is None:
             self.tables = shared
@@ -756,14 +779,12 @@ class Prepared:
         lam = as_positive("forgetting", forgetting)
         decay = math.exp(-lam * self.sup.decide_every)
         nb = self.n_blocks
-        out, ages = [], []
-        k = np.arange(nb + 1)
+        out = []
         for b, st in enumerate(self.starts):
             fresh = np.zeros(nb + 1, dtype=np.bool_)
             fresh[st] = True
             out.append(_fading(self.E[b], fresh, decay))
-            ages.append(k - st[np.searchsorted(st, k, side="right") - 1])
-        return np.where((ages[0] >= ages[1])[:, None], out[0], out[1])
+        return np.where((_older_bank(self.starts, nb) == 0)[:, None], out[0], out[1])
 
     def decide(self, mu, *, hysteresis: float = 0.2, warmup: float = 0.0, min_dwell: float = 0.0,
                sigma0: int = 0) -> np.ndarray:
@@ -789,11 +810,7 @@ class Prepared:
                              f"{mu.dtype} of shape {mu.shape}")
         if not np.all(np.isfinite(mu)) or np.any(mu < 0):
             raise ValueError("mu must hold finite, non-negative monitoring signals")
-        if isinstance(sigma0, bool) or not isinstance(sigma0, int | np.integer) or not 0 <= sigma0 < nm:
-            raise ValueError(f"sigma0 must be a candidate's index in [0, {nm}), but found {sigma0!r}")
-        step = self.sup.decide_every
-        first = min(self.n_blocks + 1, max(1, math.ceil(as_nonnegative("warmup", warmup) / step - 1e-9)))
-        dwell = min(self.n_blocks + 1, math.ceil(as_nonnegative("min_dwell", min_dwell) / step - 1e-9))
+        first, dwell = _schedule(self.n_blocks, self.sup.decide_every, warmup, min_dwell, sigma0, nm)
         # the cost law compares μ (least wins); the band-power law compares 1/μ (largest μ wins)
         with np.errstate(divide="ignore"):
             cost = mu if self.sup.law == "cost" else 1.0 / mu

@@ -74,7 +74,7 @@ __all__ = ["SEED", "N_RECORD", "N_FULL", "LAMBDAS", "HYSTERESES", "DECIDE_EVERY"
            "Study", "study", "rho_t_family", "record_part", "full_study", "load_full", "LawRun",
            "law_run", "direct_realization", "N_ROBUST", "ROBUST_SNR_DB", "robustness",
            "step_check", "MEASURED_DT", "MEASURED_VARIANTS", "measured_result", "measured_robustness",
-           "hold_check", "min_switching_summary"]
+           "hold_check", "min_switching_summary", "law_key"]
 
 #: Draws per example in the record (half train, half test) and in the full study.
 N_RECORD, N_FULL = 12, 500
@@ -338,6 +338,26 @@ def full_study(n: int = N_FULL, *, seed: int = SEED, executor=None, out=FULL_FIL
     return result
 
 
+def law_key(law: dict) -> str:
+    """The setting ``law/realization/λ/h`` of a law's parameters as the full study stores them.
+
+    Parameters
+    ----------
+    law : dict
+        ``{"law", "realization", "forgetting", "hysteresis"}``.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> law_key({"law": "cost", "realization": "copies", "forgetting": 1.0, "hysteresis": 0.1})
+    'cost/copies/1/0.1'
+    """
+    return "{law}/{realization}/{forgetting:g}/{hysteresis:g}".format(**law)
+
+
 def robustness(full: dict, *, n: int = N_ROBUST, snrs=ROBUST_SNR_DB, executor=None) -> dict:
     """The law chosen in the full study on its first ``n`` test draws per example, deciding on
     an estimate with measurement noise at each SNR (:func:`robust_result`).
@@ -363,7 +383,7 @@ def robustness(full: dict, *, n: int = N_ROBUST, snrs=ROBUST_SNR_DB, executor=No
     out = {}
     for example in ("aircraft", "generic"):
         r = full[example]
-        key = "{law}/{realization}/{forgetting:g}/{hysteresis:g}".format(**r["law"])
+        key = law_key(r["law"])
         first = full["n"] // 2
         args = [(example, first + i, key, r["fixed_in_advance"], float(snr), full["seed"])
                 for snr in snrs for i in range(n)]
@@ -411,7 +431,7 @@ def measured_robustness(full: dict, *, n: int = N_ROBUST, executor=None) -> dict
     out = {}
     for example in ("aircraft", "generic"):
         r = full[example]
-        key = "{law}/{realization}/{forgetting:g}/{hysteresis:g}".format(**r["law"])
+        key = law_key(r["law"])
         first = full["n"] // 2
         res = _map(measured_result, [(example, first + i, key, r["fixed_in_advance"], full["seed"])
                                      for i in range(n)], executor)

@@ -22,7 +22,7 @@ from .generic_example import generic_example
 __all__ = ["SEED", "LAMBDAS", "HYSTERESES", "DECIDE_EVERY", "RESTART", "NOISE_SHARE", "NOISE_TONES",
            "IDEAL_PAIR", "FRONT_FRACTIONS", "FRONT_MAXITER", "Draw", "draw", "front", "candidates",
            "lqr", "certificate", "draw_result", "fixed_gain", "LawRun", "law_run", "direct_realization",
-           "law_supervisor"]
+           "law_supervisor", "seeded_draw"]
 
 SEED = 32
 #: The tuning grid (on the training half).
@@ -111,6 +111,23 @@ def draw(example, rng: np.random.Generator) -> Draw:
     breaks = np.round(np.r_[0.0, np.cumsum(lengths)] * 100.0) / 100.0
     horizon = math.ceil(breaks[-1] / DECIDE_EVERY - 1e-9) * DECIDE_EVERY
     return Draw(fdsc.Piecewise(breaks, parts), round(horizon, 6), tuple(dom), tuple(noise))
+
+
+def seeded_draw(example: str, index: int, seed: int = SEED) -> tuple:
+    """``(Example, Draw)``: draw ``index`` of the seeded sequence of an example.
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+    index : int
+    seed : int, optional
+
+    Returns
+    -------
+    (Example, Draw)
+    """
+    ex = _example(example)
+    return ex, draw(ex, np.random.default_rng([seed, index]))
 
 
 @functools.cache
@@ -252,8 +269,7 @@ def draw_result(example: str, index: int, seed: int = SEED) -> dict:
         (``{"law/realization/λ/h": (energy, switches, diverged)}``), ``changes``,
         ``segments``, ``horizon``, ``input_energy``.
     """
-    ex = _example(example)
-    dr = draw(ex, np.random.default_rng([seed, index]))
+    ex, dr = seeded_draw(example, index, seed)
     names, gains = candidates(example)
     K0 = lqr(example)
     sup = fdsc.Supervisor(ex.plant, gains, decide_every=DECIDE_EVERY, restart=RESTART)
@@ -351,8 +367,7 @@ def law_run(example: str, index: int, law: str, fixed_in_advance: str, seed: int
     -------
     LawRun
     """
-    ex = _example(example)
-    dr = draw(ex, np.random.default_rng([seed, index]))
+    ex, dr = seeded_draw(example, index, seed)
     sup, shown, lam, h = law_supervisor(example, law)
     prep = sup.prepare(dr.d, dr.horizon)
     r = prep.run(forgetting=lam, hysteresis=h)
@@ -379,8 +394,7 @@ def direct_realization(example: str, index: int, law: str, seed: int = SEED) -> 
         ``dwell`` (s, None if none was certified up to 10³ s), ``direct`` and ``copies``
         (energies), ``direct_switches``, ``copies_switches``.
     """
-    ex = _example(example)
-    dr = draw(ex, np.random.default_rng([seed, index]))
+    ex, dr = seeded_draw(example, index, seed)
     names, gains = candidates(example)
     _kind, _real, lam, h = law.split("/")
     loops = [ex.plant.closed_loop(K) for K in gains]

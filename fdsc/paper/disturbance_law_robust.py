@@ -23,10 +23,10 @@ from .disturbance_law_draws import (
     Draw,
     _example,
     candidates,
-    draw,
     fixed_gain,
     law_supervisor,
     lqr,
+    seeded_draw,
 )
 
 __all__ = ["ESTIMATE_NOISE_TONES", "noisy_estimate", "robust_result", "step_check", "MEASURED_VARIANTS",
@@ -58,6 +58,7 @@ def noisy_estimate(example, dr: Draw, snr_db: float, rng: np.random.Generator) -
     Examples
     --------
     >>> from fdsc.paper.baselines import aircraft_example
+    >>> from fdsc.paper.disturbance_law_draws import draw
     >>> ex = aircraft_example()
     >>> dr = draw(ex, np.random.default_rng(0))
     >>> w = noisy_estimate(ex, dr, 20.0, np.random.default_rng(1))
@@ -101,8 +102,7 @@ def robust_result(example: str, index: int, law: str, fixed_in_advance: str, snr
     dict
         ``{"noisy": ratio, "exact": ratio, "switches_noisy", "switches_exact"}``.
     """
-    ex = _example(example)
-    dr = draw(ex, np.random.default_rng([seed, index]))
+    ex, dr = seeded_draw(example, index, seed)
     what = noisy_estimate(ex, dr, snr_db, np.random.default_rng([seed, index, 1]))
     sup, _shown, lam, h = law_supervisor(example, law)
     exact = sup.prepare(dr.d, dr.horizon)
@@ -135,8 +135,7 @@ def step_check(example: str, index: int, law: str, dts=(1e-3, 5e-4), seed: int =
         ``energy_rel_diff`` (largest relative difference of the stepped energies from the exact
         one).
     """
-    ex = _example(example)
-    dr = draw(ex, np.random.default_rng([seed, index]))
+    ex, dr = seeded_draw(example, index, seed)
     names, gains = candidates(example)
     kind, real, lam, h = law.split("/")
     if kind != "cost":
@@ -182,29 +181,33 @@ def measured_result(example: str, index: int, law: str, fixed_in_advance: str, s
         ``{variant: {"ratio", "switches", "diverged"}}`` and ``"exact"`` (the exact engine on
         the exact estimate, the same entries).
     """
-    ex = _example(example)
-    dr = draw(ex, np.random.default_rng([seed, index]))
+    ex, dr = seeded_draw(example, index, seed)
     sup, _shown, lam, h = law_supervisor(example, law)
     K = fixed_gain(example, fixed_in_advance)
     prep = sup.prepare(dr.d, dr.horizon)
+    refs = {}                                   # the fixed gain's energy on the plant of each scale of A
+
+    def ref(scale):
+        if scale not in refs:
+            p = ex.plant
+            refs[scale] = prep.energy_of(fdsc.Plant(scale * p.A, p.B1, p.B2, p.C, p.D1, p.D2).closed_loop(K))
+        return refs[scale]
+
     a = prep.run(forgetting=lam, hysteresis=h)
-    out = {"exact": {"ratio": a.energy / prep.energy_of(ex.plant.closed_loop(K)), "switches": a.switches,
+    out = {"exact": {"ratio": a.energy / ref(1.0), "switches": a.switches,
                      "diverged": a.diverged_at is not None}}
     for name, (derivative, scale) in MEASURED_VARIANTS.items():
-        true_A = scale * ex.plant.A
-        truth = fdsc.Plant(true_A, ex.plant.B1, ex.plant.B2, ex.plant.C, ex.plant.D1, ex.plant.D2)
-        ref = prep.energy_of(truth.closed_loop(K))
-        r = sup.run_measured(dr.d, dr.horizon, MEASURED_DT, derivative=derivative, true_A=true_A,
+        r = sup.run_measured(dr.d, dr.horizon, MEASURED_DT, derivative=derivative, true_A=scale * ex.plant.A,
                              forgetting=lam, hysteresis=h)
-        out[name] = {"ratio": r.energy / ref, "switches": r.switches, "diverged": r.diverged_at is not None}
-    names, gains = candidates(example)
-    loops = [ex.plant.closed_loop(K) for K in gains]
+        out[name] = {"ratio": r.energy / ref(scale), "switches": r.switches,
+                     "diverged": r.diverged_at is not None}
+    _names, gains = candidates(example)
+    loops = [ex.plant.closed_loop(G) for G in gains]
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", fdsc.UnstableRunWarning)
         m = fdsc.simulate_stream(loops, dr.d, dr.horizon, MEASURED_DT,
                                  law_weights=min_switching_certificate(example).law_weights())
-    out["min_switching"] = {"ratio": m.energy / prep.energy_of(ex.plant.closed_loop(K)),
-                            "switches": int(m.switches),
+    out["min_switching"] = {"ratio": m.energy / ref(1.0), "switches": int(m.switches),
                             "diverged": any(issubclass(w.category, fdsc.UnstableRunWarning) for w in caught)}
     return out
 
@@ -249,8 +252,7 @@ def hold_check(example: str, index: int, law: str, dts=(MEASURED_DT, MEASURED_DT
         ``excess`` (the relative excess energy over the exact run at each step), ``same_switches``
         (bool per step: the switch instants equal the exact run's).
     """
-    ex = _example(example)
-    dr = draw(ex, np.random.default_rng([seed, index]))
+    ex, dr = seeded_draw(example, index, seed)
     sup, _shown, lam, h = law_supervisor(example, law)
     exact = sup.prepare(dr.d, dr.horizon).run(forgetting=lam, hysteresis=h)
     excess, same = [], []
