@@ -8,7 +8,7 @@ folder of chapter results (``FDSC_CACHE_DIR``, as in a book build), so that the 
 record, the sweeps and the other chapter results are computed once per session, whether a unit
 test or a chapter asks first; the folder is deleted when the session ends. With pytest-xdist
 (``-n auto`` in ``addopts``) the workers share the controller's folder, and a per-key lock
-(:func:`fdsc.paper.cache.cached`) makes a worker that needs a result another one is computing
+(:func:`fdsc.paper.shared.cache.cached`) makes a worker that needs a result another one is computing
 wait for it instead of computing it again; each worker's BLAS and numba threads are capped so
 that the workers share the CPUs. If ``FDSC_CACHE_DIR`` is set when pytest starts, that
 folder is used and kept (``.ci/run`` shares it with ``python -m fdsc reproduce``; the keys hash
@@ -28,7 +28,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent / "book" / "_ext"))
 import notebook_cache  # noqa: E402
 import pytest  # noqa: E402
 
-from fdsc.paper.cache import CACHE_ENV, worker_threads  # noqa: E402
+from fdsc.paper.shared.cache import CACHE_ENV, worker_threads  # noqa: E402
 
 _RESULTS_KEY = "fdsc_results"
 

@@ -44,7 +44,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from fdsc import Case, LTISystem, Sinusoids, simulate, simulate_batch, simulate_stream, time_grid
-from fdsc.paper.data import aircraft, mixed_disturbance, paper_gains, paper_modes
+from fdsc.paper.shared.data import aircraft, mixed_disturbance, paper_gains, paper_modes
 from fdsc.simulate import particular
 
 DT = 1e-3
@@ -92,7 +92,7 @@ def peak_mb():
     with open("/proc/self/status") as f:
         return next(int(line.split()[1]) for line in f if line.startswith("VmHWM:")) / 1024
 from fdsc import simulate_stream
-from fdsc.paper.data import mixed_disturbance, paper_modes
+from fdsc.paper.shared.data import mixed_disturbance, paper_modes
 pm, d = paper_modes(), mixed_disturbance(0.1)
 kw = dict(law_bands=pm["bands"], law_Q=pm["Q"], specialize=True)   # one loop for every length
 simulate_stream(pm["modes"], d, 1.0, 1e-3, **kw)

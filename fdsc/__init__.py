@@ -46,8 +46,10 @@ _EXPORTS = {
                 "localized_dominance"),
     "simulate": ("SimResult", "envelope", "simulate", "time_grid"),
     "stream": ("BatchResult", "Case", "StreamResult", "Trace", "simulate_batch", "simulate_stream"),
-    "supervisor": ("LAWS", "Prepared", "SupervisedRun", "Supervisor", "band_filter", "lqr_gain",
-                   "shift_signal", "supervise"),
+    "supervisor": ("LAWS", "Supervisor", "supervise"),
+    "prepared": ("Prepared", "shift_signal"),
+    "decisions": ("SupervisedRun",),
+    "realization": ("band_filter", "lqr_gain"),
     "gc_dwell": ("DwellCertificate", "geromel_colaneri_dwell"),
     "min_switching": ("MinSwitchingCertificate", "min_switching"),
     "supervise_batch": ("SupervisedCase", "supervise_batch"),
@@ -93,6 +95,7 @@ sys.modules[__name__].__class__ = _Package
 
 if TYPE_CHECKING:  # what the lazy names are, for type checkers and editors
     from .bands import PHI, Band, band_from_spec
+    from .decisions import SupervisedRun
     from .design import FDSC
     from .dwell import (
         DwellCheck,
@@ -141,7 +144,9 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers and editors
     from .min_switching import MinSwitchingCertificate, min_switching
     from .multiband import FrontPoint, MultibandResult, ParetoFront, pareto_front, synthesize_multiband
     from .plant import LTISystem, Plant, as_plant, as_system
+    from .prepared import Prepared, shift_signal
     from .random_systems import random_hurwitz, random_plant, random_spd, random_system
+    from .realization import band_filter, lqr_gain
     from .rules import PRINTED, SwitchRule
     from .scores import frequency_weight, law_weight, score_average, score_matrix
     from .signals import (
@@ -155,16 +160,7 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers and editors
     from .simulate import SimResult, envelope, simulate, time_grid
     from .stream import BatchResult, Case, StreamResult, Trace, simulate_batch, simulate_stream
     from .supervise_batch import SupervisedCase, supervise_batch
-    from .supervisor import (
-        LAWS,
-        Prepared,
-        SupervisedRun,
-        Supervisor,
-        band_filter,
-        lqr_gain,
-        shift_signal,
-        supervise,
-    )
+    from .supervisor import LAWS, Supervisor, supervise
     from .switching import Theorem1Result, certify_q, design_q
     from .synthesis import SynthesisResult, optimize_gain, synthesize, synthesize_hinf
     from .three_mode import ScoreCertificate, certify_scores, design_scores

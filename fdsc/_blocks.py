@@ -1,6 +1,6 @@
 """Exact runs of LTI systems on a coarse grid of instants, with energies integrated exactly.
 
-Internal: the engine of :func:`fdsc.supervisor.supervise` and :class:`fdsc.supervisor.Prepared`
+Internal: the engine of :func:`fdsc.supervisor.supervise` and :class:`fdsc.prepared.Prepared`
 (the monitoring copies, the switched runs, fixed runs and segment laws).
 
 On an interval where the disturbance is ``d(t) = Σ_j a_j sin(ω_j t + φ_j)``, the system

@@ -1,7 +1,7 @@
 """The supervisor run causally on sampled measurements: the engine of
 :meth:`fdsc.supervisor.Supervisor.run_measured`. Internal.
 
-:class:`fdsc.supervisor.Prepared` assumes the estimate ŵ is known as a signal (``d`` itself, or
+:class:`fdsc.prepared.Prepared` assumes the estimate ŵ is known as a signal (``d`` itself, or
 ``d`` plus a given error), so the decisions are computed before the loop is run. When ŵ is
 computed from the loop's own measurements with a wrong model or a finite-difference derivative,
 
@@ -18,28 +18,36 @@ plant must be run together. Here they are, on a grid of step ``dt``:
 * ŵ_k is held over ``[t_k, t_{k+1})`` (a zero-order hold): every monitor and every copy of the
   realization steps exactly under the held input (Van Loan's block exponential of the system
   with ŵ as a constant state), and its output energy over the step is integrated exactly;
-* the copies of the realization start from x0, as in :class:`~fdsc.supervisor.Prepared`, the
+* the copies of the realization start from x0, as in :class:`~fdsc.prepared.Prepared`, the
   monitors from rest; ŵ_k below the rounding of its own terms counts as 0 (an exact model and
   derivative leave only rounding there, on which a relative hysteresis must not decide);
 * the plant, with the copy of the active candidate that the realization through copies feeds
   back, steps exactly under the true disturbance (its tones' oscillators in the state, as in
   :mod:`fdsc._blocks`) and the held ŵ, and its output energy is integrated exactly;
 * at each decision point the monitors' interval energies enter the fading signals μ, the banks
-  restart, and the law decides, exactly as :meth:`fdsc.supervisor.Prepared.mu` and
-  :meth:`~fdsc.supervisor.Prepared.decide` do.
+  restart, and the law decides, exactly as :meth:`fdsc.prepared.Prepared.mu` and
+  :meth:`~fdsc.prepared.Prepared.decide` do.
 
-The only approximation against :class:`~fdsc.supervisor.Prepared` with the exact estimate is
+The only approximation against :class:`~fdsc.prepared.Prepared` with the exact estimate is
 the hold of ŵ (first order in dt); the plant's own run is exact for the decisions taken.
 """
 
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 from numba import njit
 
-from ._blocks import _pair, pieces
+from . import _divergence
+from ._blocks import Grid, _pair, pieces
+from ._defaults import DEFAULT_MAX_MEMORY
+from ._simulate_kernel import check_resolved
+from ._validation import as_choice, as_matrix, as_nonnegative, as_positive, as_vector, check_type
+from .decisions import SupervisedRun, _bank_starts, _input_energy, _n_blocks, _older_bank, _schedule
+from .exceptions import EnergyOverflowError, MemoryLimitError, UnstableError, UnstableRunWarning
+from .signals import Piecewise, Sinusoids
 
 __all__ = []
 
@@ -106,6 +114,76 @@ def modes(sup, A_true):
     return out, np.vstack([p.B1, p.B1])
 
 
+def run_measured(sup, d, horizon, dt, *, derivative, true_A, x0, forgetting, hysteresis, warmup,
+                 min_dwell, sigma0):
+    """:meth:`fdsc.supervisor.Supervisor.run_measured` of the supervisor ``sup`` (see there)."""
+
+    check_type("d", d, Sinusoids | Piecewise, "an fdsc.Sinusoids or fdsc.Piecewise")
+    horizon = as_positive("horizon", horizon)
+    dt = as_positive("dt", dt)
+    derivative = as_choice("derivative", derivative, DERIVATIVES)
+    n = sup.plant.n_states
+    A_t = sup.plant.A if true_A is None else np.array(as_matrix("true_A", true_A, (n, n)))
+    block = round(sup.decide_every / dt)
+    if block < 1 or abs(block * dt - sup.decide_every) > 1e-9 * sup.decide_every:
+        raise ValueError(f"dt must divide decide_every = {sup.decide_every:g} s into whole steps, "
+                         f"but found {dt!r}")
+    nb = _n_blocks(horizon, sup.decide_every)
+    check_resolved(d, dt, "run_measured: ")
+    x0 = np.zeros(n) if x0 is None else np.array(as_vector("x0", x0, n))
+    lam = as_positive("forgetting", forgetting)
+    h = as_nonnegative("hysteresis", hysteresis)
+    nm = len(sup.gains)
+    first, dwell = _schedule(nb, sup.decide_every, warmup, min_dwell, sigma0, nm)
+    need = 8.0 * nb * (len(sup.gains) + 4)
+    if need > DEFAULT_MAX_MEMORY:
+        raise MemoryLimitError(f"run_measured: {nb} decision intervals need about {need / 2**30:.3g} GiB "
+                               f"for the monitoring signals, over the limit of "
+                               f"{DEFAULT_MAX_MEMORY / 2**30:.3g} GiB; shorten the horizon")
+    A_modes, B_modes = modes(sup, A_t)
+    worst = max(float(np.max(np.linalg.eigvals(M).real)) for M in A_modes)
+    if worst >= 0:
+        warnings.warn(f"run_measured: a candidate's loop with the plant that is run (true_A) and "
+                      f"the estimate it feeds back has an eigenvalue with real part {worst:.4g} ≥ 0; "
+                      "the divergence monitor is off", UnstableRunWarning, stacklevel=3)
+    e, sigma, mu, big, x = run(sup, A_t, d, horizon, dt, x0, derivative,
+                                         math.exp(-lam * sup.decide_every), h, first, dwell,
+                                         int(sigma0))
+    start = x0 if sup.K0 is None else np.tile(x0, 2)
+    limit = _divergence.threshold(A_modes, B_modes, start, d)
+    change = np.flatnonzero(np.diff(sigma)) + 1
+    diverged = None
+    if not np.all(np.isfinite(big)):
+        k = int(np.flatnonzero(~np.isfinite(big))[0])
+        t = (k + 1) * sup.decide_every
+        raise UnstableError(f"run_measured: the state overflowed by t = {t:g} s; the loop diverges and "
+                            "no finite energy summarizes it")
+    over = np.flatnonzero(~(big <= limit))
+    if not np.all(np.isfinite(mu)):
+        if worst >= 0 or over.size:
+            raise UnstableError("run_measured: a monitoring signal overflowed while the loop diverges "
+                                "(the estimate carries the growing state); no finite energy "
+                                "summarizes it")
+        raise EnergyOverflowError("run_measured: a monitoring signal exceeds the float range (about "
+                                  "1.8e308), so the law cannot compare them: scale the disturbance "
+                                  "(or x0) down")
+    if over.size:
+        diverged = float((over[0] + 1) * sup.decide_every)
+        bound = limit / _divergence.SAFETY
+        warnings.warn(_divergence.message("run_measured: ", diverged, float(big[over[0]]) / bound,
+                                          bound), UnstableRunWarning, stacklevel=3)
+    elif not np.all(np.isfinite(e)):
+        raise EnergyOverflowError("run_measured: the state stays finite but the energy exceeds the "
+                                  "float range (about 1.8e308): scale the disturbance (or x0) down")
+    points = np.arange(nb + 1) * sup.decide_every
+    points[-1] = horizon
+    share = np.bincount(sigma, minlength=nm) / sigma.size
+    input_energy = _input_energy(Grid(d, np.array([0.0, horizon])))
+    return SupervisedRun(horizon, dt, float(e.sum()), input_energy,
+                         change * sup.decide_every, np.r_[sigma[:1], sigma[change]], share, x,
+                         points, mu, diverged)
+
+
 def tables(sup, A_true, d, horizon, dt):
     """Everything the compiled loop reads, for a supervisor ``sup`` whose plant is run with the
     state matrix ``A_true``."""
@@ -161,7 +239,6 @@ def run(sup, A_true, d, horizon, dt, x0, derivative, decay, h, first, dwell, sig
     plant = sup.plant
     block = round(sup.decide_every / dt)
     nb = round(horizon / sup.decide_every)
-    from .supervisor import _bank_starts, _older_bank
 
     starts = _bank_starts(nb, sup.restart_blocks)       # as in Prepared
     fresh = np.zeros((2, nb + 1), dtype=np.bool_)

@@ -341,7 +341,7 @@ class FDSC:
             disturbance; ``"cost"``: the predictive-cost supervisor over the design's gains.
         K0 : "lqr", None or (m_u, n) array_like, optional
             The realization: ``"lqr"`` (default) through copies around the plant's LQR gain
-            (:func:`~fdsc.supervisor.lqr_gain`), None direct (``u = K_σ x``), or a gain.
+            (:func:`~fdsc.realization.lqr_gain`), None direct (``u = K_σ x``), or a gain.
         decide_every, restart : float, optional
             See :class:`~fdsc.supervisor.Supervisor`.
 
@@ -368,7 +368,8 @@ class FDSC:
         >>> ctrl.supervisor().run(d, 120.0, warmup=5.0).sequence.tolist()
         [0, 1]
         """
-        from .supervisor import Supervisor, lqr_gain
+        from .realization import lqr_gain
+        from .supervisor import Supervisor
 
         if isinstance(K0, str):
             if K0 != "lqr":

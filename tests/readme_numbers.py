@@ -8,7 +8,7 @@ machine with the same pinned packages, and compares the two outputs: a packaged 
 compute, from scratch, exactly the numbers of the tested tree (gains, certified gains, Theorem 1's
 γ's, the energies of the switched and the fixed loops, the switch count), with its own compiled
 kernels. It also prints where ``fdsc`` was imported from and the fingerprint of its sources and
-data (:func:`fdsc.paper.cache.fingerprint`), which the cached chapter results are keyed by.
+data (:func:`fdsc.paper.shared.cache.fingerprint`), which the cached chapter results are keyed by.
 """
 
 import contextlib
@@ -35,7 +35,7 @@ def numbers(readme):
 
     matplotlib.use("Agg")
     import fdsc
-    from fdsc.paper.cache import fingerprint
+    from fdsc.paper.shared.cache import fingerprint
 
     ns = {}
     out = io.StringIO()

@@ -33,9 +33,9 @@ from fdsc.energy import (
     steady_state_power,
 )
 from fdsc.lmi import gkyp_gamma
-from fdsc.paper.data import paper_disturbance, run_controller
-from fdsc.paper.stationary import stationary_runs
-from fdsc.paper.theorem1 import window_ratios
+from fdsc.paper.reproduced.stationary import stationary_runs
+from fdsc.paper.reproduced.theorem1 import window_ratios
+from fdsc.paper.shared.data import paper_disturbance, run_controller
 from fdsc.simulate import particular, simulate, time_grid
 from fdsc.switching import certify_q, design_q
 

@@ -14,7 +14,7 @@ from scipy.integrate import solve_ivp
 
 from fdsc import LTISystem, Sinusoids, _divergence
 from fdsc.exceptions import UnstableRunWarning
-from fdsc.paper.data import hf_disturbance, paper_modes
+from fdsc.paper.shared.data import hf_disturbance, paper_modes
 from fdsc.random_systems import random_hurwitz
 from fdsc.signals import Piecewise, Sampled
 from fdsc.simulate import simulate, time_grid

@@ -201,7 +201,7 @@ CASES = [(mod_name, name) for mod_name, (module, _, _) in MODULES.items() if mod
 def test_the_walk_covers_both_layers():
     # guards the parametrized tests below against checking nothing
     assert {"fdsc", "fdsc.bands", "fdsc.design", "fdsc.__main__", "fdsc.paper",
-            "fdsc.paper.results", "fdsc.paper.__main__"} <= set(MODULES)
+            "fdsc.paper.shared.results", "fdsc.paper.__main__"} <= set(MODULES)
     assert not any(part.startswith("_") and part != "__main__"
                    for name in MODULES for part in name.split("."))
     assert MODULES["fdsc.paper.__main__"][0] is None and MODULES["fdsc.__main__"][0] is not None

@@ -6,7 +6,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from fdsc import Band, DimensionError, LTISystem, band_peak, freqresp, sigma_max
-from fdsc.paper.data import aircraft, paper_bands, paper_gains
+from fdsc.paper.shared.data import aircraft, paper_bands, paper_gains
 
 
 def first_order(a=1.0):

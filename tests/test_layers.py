@@ -97,7 +97,7 @@ def test_a_simulation_loads_neither_cvxpy_nor_the_scipy_it_does_not_use():
              "scipy.integrate")
     code = ("import sys, fdsc\n"
             "from fdsc import Sinusoids, simulate_stream\n"
-            "from fdsc.paper.data import paper_modes\n"
+            "from fdsc.paper.shared.data import paper_modes\n"
             "pm = paper_modes()\n"
             "r = simulate_stream(pm['modes'], Sinusoids([1.0], [2.0]), 0.1, 1e-3, law_bands=pm['bands'], "
             "law_Q=pm['Q'])\n"

@@ -16,8 +16,8 @@ from fdsc import (
     Supervisor,
     UnstableError,
     UnstableRunWarning,
+    lqr_gain,
 )
-from fdsc.supervisor import lqr_gain
 
 PLANT = Plant([[0.0, 1.0], [-4.0, -0.4]], [[0.0], [1.0]], [[0.0], [1.0]],
               [[1.0, 0.0], [0.0, 0.0]], [[0.0], [0.0]], [[0.0], [0.1]])

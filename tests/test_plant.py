@@ -3,7 +3,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from fdsc import DimensionError, LTISystem, Plant
-from fdsc.paper.data import aircraft, paper_gains
+from fdsc.paper.shared.data import aircraft, paper_gains
 
 
 def test_closed_loop_formula():

@@ -6,7 +6,7 @@ from numpy.testing import assert_allclose
 
 from fdsc import LTISystem, Sampled, Sinusoids, SwitchRule
 from fdsc.exceptions import DimensionError
-from fdsc.paper.data import lf_disturbance, mixed_disturbance, paper_modes
+from fdsc.paper.shared.data import lf_disturbance, mixed_disturbance, paper_modes
 from fdsc.rules import apply_rule, rule_state
 from fdsc.simulate import simulate, time_grid
 from fdsc.stream import Case, simulate_batch, simulate_stream

@@ -70,7 +70,7 @@ def test_a_process_pool_gives_the_thread_path_bit_for_bit(own_plant_cases):
 
 
 def test_a_seeded_monte_carlo_set_on_the_cluster(client):
-    from fdsc.paper.monte_carlo import monte_carlo
+    from fdsc.paper.pays.monte_carlo import monte_carlo
 
     local = monte_carlo("generic", n=6, seed=3, noise_repeats=0)
     remote = monte_carlo("generic", n=6, seed=3, noise_repeats=0, executor=client)

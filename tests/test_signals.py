@@ -3,7 +3,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from fdsc import Band, Sinusoids, dominance_degree, localized_dominance
-from fdsc.paper.data import lf_disturbance, mixed_disturbance, piecewise_disturbance
+from fdsc.paper.shared.data import lf_disturbance, mixed_disturbance, piecewise_disturbance
 
 
 def test_derivative_matches_finite_difference():

@@ -5,7 +5,7 @@ from scipy.linalg import expm
 
 from fdsc import LTISystem, Sinusoids
 from fdsc.exceptions import MemoryLimitError
-from fdsc.paper.data import (
+from fdsc.paper.shared.data import (
     aircraft,
     lf_disturbance,
     mixed_disturbance,

@@ -11,7 +11,7 @@ from scipy.integrate import simpson
 
 from fdsc import Band, LTISystem, Piecewise, Sampled, Sinusoids, SwitchRule, _stream_run, _stream_setup
 from fdsc.exceptions import UnstableError, UnstableRunWarning
-from fdsc.paper.data import hf_disturbance, mixed_disturbance, paper_modes, piecewise_disturbance
+from fdsc.paper.shared.data import hf_disturbance, mixed_disturbance, paper_modes, piecewise_disturbance
 from fdsc.random_systems import random_hurwitz, random_spd
 from fdsc.simulate import simulate, time_grid
 from fdsc.stream import PHASOR_BLOCK, Case, simulate_batch, simulate_stream
@@ -301,7 +301,7 @@ def test_padded_specialized_loop_equals_the_general_loop_bit_for_bit(monkeypatch
 
 _TWO_THREADS = """
 import numpy as np, numba
-from fdsc.paper.data import mixed_disturbance, paper_modes
+from fdsc.paper.shared.data import mixed_disturbance, paper_modes
 from fdsc.stream import Case, simulate_batch
 assert numba.config.NUMBA_NUM_THREADS >= 2
 pm = paper_modes()

@@ -17,9 +17,9 @@ from fdsc import (
     SupervisedCase,
     Supervisor,
     UnstableRunWarning,
+    lqr_gain,
     supervise_batch,
 )
-from fdsc.supervisor import lqr_gain
 
 PLANT = Plant([[0.0, 1.0], [-4.0, -0.4]], [[0.0], [1.0]], [[0.0], [1.0]],
               [[1.0, 0.0], [0.0, 0.0]], [[0.0], [0.0]], [[0.0], [0.1]])

@@ -8,9 +8,18 @@ import warnings
 import numpy as np
 import pytest
 
-from fdsc import DimensionError, Piecewise, Plant, Sampled, Sinusoids, simulate
+from fdsc import (
+    DimensionError,
+    Piecewise,
+    Plant,
+    Sampled,
+    Sinusoids,
+    lqr_gain,
+    shift_signal,
+    simulate,
+    supervise,
+)
 from fdsc.simulate import time_grid
-from fdsc.supervisor import lqr_gain, shift_signal, supervise
 
 # the README's oscillator with its LF and HF designs
 PLANT = Plant([[0.0, 1.0], [-4.0, -0.4]], [[0.0], [1.0]], [[0.0], [1.0]],

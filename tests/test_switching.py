@@ -3,7 +3,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from fdsc import Band, InfeasibleError, band_peak
-from fdsc.paper.data import paper_modes
+from fdsc.paper.shared.data import paper_modes
 from fdsc.switching import certify_q, design_q, theorem1_matrices
 
 

@@ -5,8 +5,8 @@ from numpy.testing import assert_allclose
 
 from fdsc import Band, InfeasibleError, Plant, band_peak, random_plant
 from fdsc.lmi import gkyp_gamma
-from fdsc.paper.data import aircraft, paper_bands, paper_gains
-from fdsc.paper.verdict import verdict
+from fdsc.paper.shared.data import aircraft, paper_bands, paper_gains
+from fdsc.paper.shared.verdict import verdict
 from fdsc.synthesis import SWEEP_RTOL, check_stabilizable, optimize_gain, synthesize, synthesize_hinf
 
 

@@ -34,7 +34,7 @@ from jupyter_cache.base import CacheBundleIn
 from sphinx.application import ENV_PICKLE_FILENAME
 from sphinx.errors import ExtensionError
 
-from fdsc.paper.cache import environ, file_lock
+from fdsc.paper.shared.cache import environ, file_lock
 
 #: The repository: ``fdsc/``, ``requirements.txt`` and ``book/`` are in it.
 ROOT = Path(__file__).resolve().parents[2]

@@ -2,7 +2,7 @@
 
 At the start of a build it empties ``<outdir>/../.fdsc-cache`` and sets ``FDSC_CACHE_DIR`` to
 it; the kernels that execute the notebooks inherit the variable, and
-:func:`fdsc.paper.cache.cached` keeps each chapter result there. The landing page's findings
+:func:`fdsc.paper.shared.cache.cached` keeps each chapter result there. The landing page's findings
 and the report (built from the whole record) and the chapters then reuse the same values instead of
 computing them again. A fresh folder per build keeps builds independent of each other.
 """
@@ -11,7 +11,7 @@ import os
 import shutil
 from pathlib import Path
 
-from fdsc.paper.cache import CACHE_ENV
+from fdsc.paper.shared.cache import CACHE_ENV
 
 
 def _use_fresh_cache(app):

@@ -25,51 +25,11 @@ import sys
 import time
 from pathlib import Path
 
-import numpy as np
-
-from .record import JOBS_ENV, reproduction_record
+from fdsc.paper.record import JOBS_ENV, reproduction_record
+from fdsc.paper.shared.results import RECORD_DIGITS, to_jsonable
 
 __all__ = ["main", "reproduce", "cold_times_command", "disturbance_law_command", "to_jsonable",
            "RECORD_DIGITS"]
-
-
-#: Significant digits of the floats written to the record (far beyond any printed number; the
-#: last digits of a solver's answer are rounding noise and would make two builds differ).
-RECORD_DIGITS = 10
-
-
-def to_jsonable(obj):
-    """Convert arrays, complex numbers and NumPy scalars to JSON-friendly values.
-
-    Floats are rounded to :data:`RECORD_DIGITS` significant digits; non-finite floats become
-    the strings ``"inf"``, ``"-inf"``, ``"nan"``.
-
-    Parameters
-    ----------
-    obj : object
-        Nested dicts, lists, tuples, arrays and scalars.
-
-    Returns
-    -------
-    object
-        The same structure with JSON-serializable leaves.
-    """
-    if isinstance(obj, dict):
-        return {str(k): to_jsonable(v) for k, v in obj.items()}
-    if isinstance(obj, list | tuple):
-        return [to_jsonable(v) for v in obj]
-    if isinstance(obj, np.ndarray):
-        return to_jsonable(obj.tolist())
-    if isinstance(obj, complex | np.complexfloating):
-        return {"re": float(obj.real), "im": float(obj.imag)}
-    if isinstance(obj, np.bool_):
-        return bool(obj)
-    if isinstance(obj, np.integer):
-        return int(obj)
-    if isinstance(obj, float | np.floating):
-        x = float(obj)
-        return float(f"{x:.{RECORD_DIGITS}g}") if np.isfinite(x) else str(x)
-    return obj
 
 
 def _writable_dir(path):
@@ -134,7 +94,7 @@ def cold_times_command(argv=None):
     """``cold-times [--book DIR] [--out FILE]``: measure every chapter's cold execution time.
 
     Registered as the command ``cold-times`` of ``python -m fdsc``
-    (:func:`fdsc.paper.environment.measure_cold_times`).
+    (:func:`fdsc.paper.shared.environment.measure_cold_times`).
 
     Parameters
     ----------
@@ -146,7 +106,7 @@ def cold_times_command(argv=None):
     int
         Exit status (0 on success).
     """
-    from .environment import COLD_TIMES_FILE, measure_cold_times
+    from fdsc.paper.shared.environment import COLD_TIMES_FILE, measure_cold_times
 
     root = Path(__file__).resolve().parents[2]
     parser = argparse.ArgumentParser(prog="python -m fdsc cold-times",
@@ -167,7 +127,7 @@ def cold_times_command(argv=None):
 def disturbance_law_command(argv=None):
     """``disturbance-law [--n N] [--workers W] [--scheduler ADDRESS] [--out FILE]
     [--robustness-only | --measured-only]``: the full
-    study of :mod:`fdsc.paper.disturbance_law` (:func:`~fdsc.paper.disturbance_law.full_study`).
+    study of :mod:`fdsc.paper.pays.disturbance_law` (:func:`~fdsc.paper.pays.disturbance_law.full_study`).
 
     Parameters
     ----------
@@ -182,7 +142,7 @@ def disturbance_law_command(argv=None):
     import argparse
     from concurrent.futures import ProcessPoolExecutor
 
-    from .disturbance_law import FULL_FILE, N_FULL, full_study, measured_robustness, robustness
+    from fdsc.paper.pays.disturbance_law import FULL_FILE, N_FULL, full_study, measured_robustness, robustness
 
     parser = argparse.ArgumentParser(prog="python -m fdsc disturbance-law",
                                      description="the full study of the law on the disturbance estimate")

@@ -10,9 +10,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .comparators import COMPARATORS, best_fixed
-from .prose import count, num, pct, span, times
-from .record import PAPER_FIGURES, figure_status
+from fdsc.paper.record import PAPER_FIGURES, figure_status
+from fdsc.paper.shared.comparators import COMPARATORS, best_fixed
+from fdsc.paper.shared.prose import count, num, pct, span, times
 
 __all__ = ["Findings", "findings", "law_sentence", "PRINTED_BOUNDS"]
 
@@ -75,7 +75,7 @@ class Findings:
         diverge under the printed law (measured ẋ).
     law : dict
         ``{example: summary}`` of the law on the disturbance estimate on the test draws of the
-        full non-stationary study (:func:`fdsc.paper.disturbance_law.load_full`), or of the
+        full non-stationary study (:func:`fdsc.paper.pays.disturbance_law.load_full`), or of the
         record's seeded subset where the full study is absent.
     """
 
@@ -110,7 +110,7 @@ class Findings:
         Returns
         -------
         dict
-            ``{name: text}`` for :func:`fdsc.paper.prose.glue_numbers`.
+            ``{name: text}`` for :func:`fdsc.paper.shared.prose.glue_numbers`.
         """
         v, c = self.verdicts, self.claims
         wins = ", ".join(f"{name} in {count(k)}" for name, k in
@@ -194,7 +194,7 @@ def _measured_clause(m):
 
 
 def _law(record):
-    from .disturbance_law import load_full
+    from fdsc.paper.pays.disturbance_law import load_full
 
     full = load_full()
     if full is not None:
@@ -224,7 +224,7 @@ def _monte_carlo(entry):
 
 
 def _ideal_generic():
-    from .generic_example import generic_study
+    from fdsc.paper.pays.generic_example import generic_study
 
     study = generic_study()
     _, best = best_fixed(study.rho_t_sweep.energy, "generic")
@@ -290,7 +290,7 @@ def findings(record):
 
 def _poles():
     """|λ| of the airframe's open-loop modes, the fast pole of the K_f1 loop, and ϖ_h."""
-    from .data import aircraft, paper_bands, paper_gains
+    from fdsc.paper.shared.data import aircraft, paper_bands, paper_gains
 
     plant, gains = aircraft(), paper_gains()
     airframe = float(np.max(np.abs(np.linalg.eigvals(plant.A))))

@@ -3,7 +3,7 @@
 ``python -m fdsc reproduce --out DIR`` writes :func:`reproduction_record` to
 ``DIR/reproduction.json``; the book's landing page reads its findings from it and the report
 renders every entry. The chapters are computed by several processes at once (:data:`JOBS_ENV`),
-which share their results through the cache folder (:func:`fdsc.paper.cache.shared_results`).
+which share their results through the cache folder (:func:`fdsc.paper.shared.cache.shared_results`).
 """
 
 import importlib
@@ -11,30 +11,24 @@ import multiprocessing
 import os
 from concurrent.futures import ProcessPoolExecutor
 
-from . import (
-    baselines,
+from fdsc.paper.pays import baselines, comparator_wins, disturbance_law, generic_example, monte_carlo
+from fdsc.paper.repairs import theorem1_counterexamples, three_mode, wellposed
+from fdsc.paper.reproduced import (
     claims,
-    comparators,
-    disturbance_law,
     frequency_ranges,
     frequency_selective,
-    generic_example,
     gkyp_lemma,
-    inputs,
-    monte_carlo,
     nonstationary,
     passive_controllers,
     stationary,
     switching_law,
     theorem1,
-    theorem1_counterexamples,
-    three_mode,
-    wellposed,
 )
-from .cache import cached, shared_results, worker_threads
-from .environment import environment
-from .names import FIGURE_IDS
-from .results import RecordPart
+from fdsc.paper.shared import inputs
+from fdsc.paper.shared.cache import cached, shared_results, worker_threads
+from fdsc.paper.shared.environment import environment
+from fdsc.paper.shared.names import FIGURE_IDS
+from fdsc.paper.shared.results import RecordPart
 
 __all__ = [
     "reproduction_record",
@@ -97,13 +91,13 @@ def figure_status(record):
 #: The chapters that contribute to the record, in the record's order (first the printed inputs).
 CHAPTERS = (inputs, frequency_ranges, gkyp_lemma, passive_controllers, frequency_selective, theorem1,
             theorem1_counterexamples, switching_law, stationary, nonstationary, wellposed, three_mode,
-            baselines, generic_example, monte_carlo, comparators, disturbance_law)
+            baselines, generic_example, monte_carlo, comparator_wins, disturbance_law)
 
 
 #: The book page that computes each chapter module's entries (the report links to it); entries
 #: listed in :data:`ENTRY_PAGES` are shown on another page than their module's.
 PAGES = {"inputs": "frequency_ranges", "wellposed": "wellposed_laws", "three_mode": "three_modes",
-         "comparators": "baselines"}
+         "comparator_wins": "baselines"}
 ENTRY_PAGES = {"bound_f1": "printed_bounds", "bound_f2": "printed_bounds",
                "bound_f3": "printed_bounds", "bound_e": "printed_bounds"}
 
@@ -124,8 +118,10 @@ def entry_page(module_name, entry_id):
 
     Examples
     --------
-    >>> entry_page("fdsc.paper.wellposed", "x"), entry_page("fdsc.paper.passive_controllers", "bound_e")
-    ('wellposed_laws', 'printed_bounds')
+    >>> entry_page("fdsc.paper.repairs.wellposed", "x")
+    'wellposed_laws'
+    >>> entry_page("fdsc.paper.reproduced.passive_controllers", "bound_e")
+    'printed_bounds'
     """
     short = module_name.rsplit(".", 1)[-1]
     return ENTRY_PAGES.get(entry_id, PAGES.get(short, short))
@@ -179,10 +175,10 @@ def chapter_parts(chapters, jobs):
     jobs : int
         Processes (1: this process, one chapter after the other). The worker processes are
         started fresh (``spawn``) and inherit the environment, so inside
-        :func:`~fdsc.paper.cache.shared_results` they share the results folder; its per-key
+        :func:`~fdsc.paper.shared.cache.shared_results` they share the results folder; its per-key
         locks make a process that needs a result another one is computing wait for it. Each
         worker's BLAS and numba threads are capped so that the workers share the CPUs
-        (:func:`~fdsc.paper.cache.worker_threads`).
+        (:func:`~fdsc.paper.shared.cache.worker_threads`).
 
     Returns
     -------
@@ -206,7 +202,7 @@ def reproduction_record():
 
     The sum of the chapters' record parts (each chapter's ``record_part()``, computed by
     :func:`record_jobs` processes: :func:`chapter_parts`), in the order of :data:`CHAPTERS`,
-    the claims checklist (:func:`fdsc.paper.claims.claims_checklist`) with its step-halving
+    the claims checklist (:func:`fdsc.paper.reproduced.claims.claims_checklist`) with its step-halving
     entry, and the environment. The format is the JSON Schema
     ``fdsc/paper/data/record.schema.json``.
 

@@ -1,12 +1,13 @@
-"""Tests of the chapter module fdsc.paper.baselines (does FDSC pay on the aircraft?)."""
+"""Tests of the chapter module fdsc.paper.pays.baselines (does FDSC pay on the aircraft?)."""
 
 import numpy as np
 import pytest
 
 import fdsc
-from fdsc.paper import baselines as bl
-from fdsc.paper.data import paper_disturbance
-from fdsc.paper.nonstationary import mixed_sweep
+from fdsc.paper.pays import baselines as bl
+from fdsc.paper.reproduced.nonstationary import mixed_sweep
+from fdsc.paper.shared.data import paper_disturbance
+from fdsc.paper.shared.examples import OPEN_LOOP
 
 
 @pytest.fixture(scope="module")
@@ -17,7 +18,7 @@ def b():
 def test_aircraft_example_holds_the_paper_controllers():
     ex = bl.aircraft_example()
     assert ex.names == bl.FIXED + bl.SWITCHED
-    assert not np.any(ex.gains[bl.OPEN_LOOP])
+    assert not np.any(ex.gains[OPEN_LOOP])
     printed, rule = ex.designs["FDSC"]
     assert rule == fdsc.PRINTED and ex.designs[bl.FDSC_DWELL][1] == fdsc.SwitchRule.dwell_time(bl.DWELL_TAU)
     with_best, _ = ex.designs[bl.FDSC_HF_BEST]
@@ -51,7 +52,7 @@ def test_headline_no_switched_controller_beats_the_fixed_ones_by_much(b):
         assert np.min(b.switched_ratio(name)) > 0.9, name
     lf, hf = b.family("stationary")
     assert lf.winner() == "PassC-LF" and lf.factor("FDSC") > 10     # measured 119
-    assert hf.winner(bl.FIXED) == bl.OPEN_LOOP                       # 1.018 below PassC-HF
+    assert hf.winner(bl.FIXED) == OPEN_LOOP                       # 1.018 below PassC-HF
 
 
 def test_hf_good_in_band(b):
@@ -59,7 +60,7 @@ def test_hf_good_in_band(b):
     lf, hf = b.family("stationary")
     assert lf.energy[bl.FDSC_HF_BEST] < 0.7 * lf.energy["FDSC"]
     assert hf.energy[bl.FDSC_HF_BEST] > 3 * hf.energy["FDSC"]
-    assert b.steady[bl.HF_BEST]["HF"] > 2 * b.steady[bl.OPEN_LOOP]["HF"]    # 0.291 against 0.108
+    assert b.steady[bl.HF_BEST]["HF"] > 2 * b.steady[OPEN_LOOP]["HF"]    # 0.291 against 0.108
 
 
 def test_winner_table_covers_every_case(b):

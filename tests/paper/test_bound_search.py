@@ -6,7 +6,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from fdsc import simulate
-from fdsc.paper.bound_search import (
+from fdsc.paper.reproduced.bound_search import (
     ENERGY_RATIO,
     L2_RATIO,
     ROUND_HORIZONS,
@@ -19,9 +19,9 @@ from fdsc.paper.bound_search import (
     search_signals,
     time_domain_bound_search,
 )
-from fdsc.paper.data import STATIONARY_DT, aircraft, hf_disturbance, paper_data, paper_gains
-from fdsc.paper.names import GAIN_ORDER
-from fdsc.paper.stationary import stationary_runs
+from fdsc.paper.reproduced.stationary import stationary_runs
+from fdsc.paper.shared.data import STATIONARY_DT, aircraft, hf_disturbance, paper_data, paper_gains
+from fdsc.paper.shared.names import GAIN_ORDER
 from fdsc.simulate import time_grid
 
 

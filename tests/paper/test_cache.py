@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from fdsc.paper import cache
-from fdsc.paper.cache import CACHE_ENV, cached
+from fdsc.paper.shared import cache
+from fdsc.paper.shared.cache import CACHE_ENV, cached
 
 CALLS = []
 

@@ -2,8 +2,8 @@ import json
 
 import pytest
 
-from fdsc.paper.claims import ClaimRow, halving_record, stationary_claims, sweep_claims
-from fdsc.paper.nonstationary import (
+from fdsc.paper.reproduced.claims import ClaimRow, halving_record, stationary_claims, sweep_claims
+from fdsc.paper.reproduced.nonstationary import (
     SweepStudy,
     crossover,
     extended_piecewise,
@@ -12,8 +12,8 @@ from fdsc.paper.nonstationary import (
     p2_localized,
     piecewise_sweep,
 )
-from fdsc.paper.stationary import stationary_runs
-from fdsc.paper.verdict import CLAIM_VERDICTS
+from fdsc.paper.reproduced.stationary import stationary_runs
+from fdsc.paper.shared.verdict import CLAIM_VERDICTS
 
 DT = 2e-3
 

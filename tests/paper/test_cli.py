@@ -3,7 +3,8 @@ import json
 import numpy as np
 import pytest
 
-from fdsc.paper.cli import main, to_jsonable
+from fdsc.paper.cli import main
+from fdsc.paper.shared.results import to_jsonable
 
 
 def test_cli_writes_the_record(tmp_path, capsys):

@@ -1,10 +1,10 @@
-"""fdsc.paper.comparators: the one comparator set behind every "best fixed"."""
+"""fdsc.paper.shared.comparators: the one comparator set behind every "best fixed"."""
 
 import numpy as np
 import pytest
 
-from fdsc.paper import baselines
-from fdsc.paper.comparators import COMPARATORS, PAPER_FOUR, best_fixed, comparators
+from fdsc.paper.pays import baselines
+from fdsc.paper.shared.comparators import COMPARATORS, PAPER_FOUR, best_fixed, comparators
 
 
 def test_the_set():

@@ -2,7 +2,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from fdsc.paper.data import (
+from fdsc.paper.shared.data import (
     aircraft,
     hf_disturbance,
     lf_disturbance,
@@ -51,7 +51,7 @@ def test_paper_disturbances():
 
 
 def test_paper_fdsc_is_built_once_per_q_and_cannot_be_changed():
-    from fdsc.paper.data import paper_fdsc, paper_modes
+    from fdsc.paper.shared.data import paper_fdsc, paper_modes
 
     printed = paper_fdsc("paper")
     assert paper_fdsc("paper") is printed

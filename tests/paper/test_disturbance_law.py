@@ -1,4 +1,4 @@
-"""fdsc.paper.disturbance_law: the non-stationary draws, the choice of the fixed gain in advance
+"""fdsc.paper.pays.disturbance_law: the non-stationary draws, the choice of the fixed gain in advance
 and of the law on the training half, the summary's fields, and the seeded study's
 determinism."""
 
@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 import fdsc
-from fdsc.paper import disturbance_law as dl
-from fdsc.paper.baselines import aircraft_example
-from fdsc.paper.generic_example import generic_example
+from fdsc.paper.pays import disturbance_law as dl
+from fdsc.paper.pays.generic_example import generic_example
+from fdsc.paper.reproduced.paper_cases import aircraft_example
 
 
 @pytest.mark.parametrize("example", [aircraft_example, generic_example])
@@ -107,7 +107,7 @@ def test_the_record_entries_carry_every_field():
 
 
 def test_a_draw_on_sampled_measurements_reports_every_variant(monkeypatch):
-    from fdsc.paper import disturbance_law_robust as rb
+    from fdsc.paper.pays import disturbance_law_robust as rb
 
     ex = aircraft_example()
     full = dl.draw(ex, np.random.default_rng([dl.SEED, 0]))

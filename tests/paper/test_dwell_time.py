@@ -5,8 +5,8 @@ import pytest
 from numpy.testing import assert_allclose
 
 from fdsc.dwell import lyapunov_dwell, periodic_dwell_margin
-from fdsc.paper.data import paper_modes
-from fdsc.paper.dwell_time import DwellCertificate, dwell_certificate
+from fdsc.paper.shared.data import paper_modes
+from fdsc.paper.shared.dwell_time import DwellCertificate, dwell_certificate
 
 
 @pytest.fixture(scope="module")

@@ -1,6 +1,6 @@
-"""Tests of fdsc.paper.environment."""
+"""Tests of fdsc.paper.shared.environment."""
 
-from fdsc.paper.environment import build_commit, environment
+from fdsc.paper.shared.environment import build_commit, environment
 
 
 def test_environment_lists_python_and_packages():

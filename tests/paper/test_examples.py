@@ -1,10 +1,10 @@
-"""Tests of fdsc.paper.examples (an example's controllers run side by side)."""
+"""Tests of fdsc.paper.shared.examples (an example's controllers run side by side)."""
 
 import numpy as np
 import pytest
 
 import fdsc
-from fdsc.paper.examples import OPEN_LOOP, Example
+from fdsc.paper.shared.examples import OPEN_LOOP, Example
 
 
 @pytest.fixture(scope="module")

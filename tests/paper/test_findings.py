@@ -3,10 +3,10 @@
 import numpy as np
 import pytest
 
-from fdsc.paper.baselines import SWITCHED, baselines
-from fdsc.paper.comparators import best_fixed
 from fdsc.paper.findings import PRINTED_BOUNDS, findings
+from fdsc.paper.pays.baselines import SWITCHED, baselines
 from fdsc.paper.record import reproduction_record
+from fdsc.paper.shared.comparators import best_fixed
 
 
 @pytest.fixture(scope="module")
@@ -67,7 +67,7 @@ def test_the_law_sentence_says_whether_it_pays_and_against_what():
     flat = dict(pays, median_ratio_vs_fixed_in_advance=0.995, oracle_median_ratio_vs_fixed_in_advance=0.998,
                 fixed_in_advance="PassC-LF")
     text = law_sentence({"generic": pays, "aircraft": flat})
-    from fdsc.paper.prose import pct
+    from fdsc.paper.shared.prose import pct
 
     assert text.startswith("on the generic example it pays: median energy ×0.600 that of the fixed gain "
                            f"chosen in advance (front 1), less on {pct(0.93)} of 250 test draws")

@@ -4,7 +4,7 @@ from numpy.testing import assert_allclose
 from scipy.integrate import quad
 
 from fdsc import Band, Sinusoids
-from fdsc.paper.frequency_ranges import (
+from fdsc.paper.reproduced.frequency_ranges import (
     DominanceVsRho,
     PaleyWienerTable,
     PiecewiseDominance,
@@ -20,8 +20,8 @@ from fdsc.paper.frequency_ranges import (
     truncated_energy,
     truncated_spectrum,
 )
-from fdsc.paper.results import RecordPart
-from fdsc.paper.verdict import VERDICTS
+from fdsc.paper.shared.results import RecordPart
+from fdsc.paper.shared.verdict import VERDICTS
 
 LF_SIGNAL = Sinusoids([1.0, 1.0, 1.0], [0.1, 0.2, 0.3])
 

@@ -3,7 +3,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from fdsc import Band
-from fdsc.paper.frequency_selective import (
+from fdsc.paper.reproduced.frequency_selective import (
     PROP1_KINDS,
     EPFAircraft,
     Prop1Case,
@@ -17,8 +17,8 @@ from fdsc.paper.frequency_selective import (
     prop1_summary,
     table1_trends,
 )
-from fdsc.paper.results import RecordPart
-from fdsc.paper.verdict import VERDICTS
+from fdsc.paper.shared.results import RecordPart
+from fdsc.paper.shared.verdict import VERDICTS
 
 REQUIRED = ("id", "source", "paper", "recomputed", "verdict", "note")
 

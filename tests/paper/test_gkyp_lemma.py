@@ -3,8 +3,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from fdsc import LTISystem, band_peak, sigma_max
-from fdsc.paper.data import aircraft, paper_bands, paper_gains
-from fdsc.paper.gkyp_lemma import (
+from fdsc.paper.reproduced.gkyp_lemma import (
     GainBandTable,
     GammaSlip,
     GammaSquaredCheck,
@@ -14,9 +13,10 @@ from fdsc.paper.gkyp_lemma import (
     record_part,
     windowed_tone_ratio,
 )
-from fdsc.paper.names import GAIN_ORDER
-from fdsc.paper.results import RecordPart
-from fdsc.paper.verdict import VERDICTS
+from fdsc.paper.shared.data import aircraft, paper_bands, paper_gains
+from fdsc.paper.shared.names import GAIN_ORDER
+from fdsc.paper.shared.results import RecordPart
+from fdsc.paper.shared.verdict import VERDICTS
 
 
 def _check_part(part, ids):

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 from numpy.testing import assert_array_equal
 
-from fdsc.paper import inputs
-from fdsc.paper.data import (
+from fdsc.paper.shared import inputs
+from fdsc.paper.shared.data import (
     aircraft,
     mixed_disturbance,
     paper_bands,
@@ -17,8 +17,8 @@ from fdsc.paper.data import (
     paper_gains,
     piecewise_disturbance,
 )
-from fdsc.paper.inputs import INPUT_IDS, PIECEWISE_HORIZON_PRINTED, passc_hf_scale, record_part
-from fdsc.paper.verdict import VERDICTS
+from fdsc.paper.shared.inputs import INPUT_IDS, PIECEWISE_HORIZON_PRINTED, passc_hf_scale, record_part
+from fdsc.paper.shared.verdict import VERDICTS
 
 TEX = Path(__file__).resolve().parents[3] / "shared" / "paper" / "fdsc-paper.tex"
 

@@ -1,11 +1,11 @@
-"""Tests of the chapter module fdsc.paper.monte_carlo (random disturbances)."""
+"""Tests of the chapter module fdsc.paper.pays.monte_carlo (random disturbances)."""
 
 import numpy as np
 import pytest
 
 import fdsc
-from fdsc.paper import monte_carlo as mc
-from fdsc.paper.baselines import aircraft_example
+from fdsc.paper.pays import monte_carlo as mc
+from fdsc.paper.reproduced.paper_cases import aircraft_example
 
 
 @pytest.fixture(scope="module")

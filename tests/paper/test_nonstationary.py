@@ -5,8 +5,7 @@ import pytest
 
 from fdsc import simulate_stream
 from fdsc.frequency import steady_state_gain
-from fdsc.paper.data import aircraft, mixed_disturbance, paper_gains, piecewise_disturbance
-from fdsc.paper.nonstationary import (
+from fdsc.paper.reproduced.nonstationary import (
     P2_WINDOWS,
     SWEEP_NAMES,
     SweepStudy,
@@ -19,6 +18,7 @@ from fdsc.paper.nonstationary import (
     piecewise_sweep,
     sweep_cases,
 )
+from fdsc.paper.shared.data import aircraft, mixed_disturbance, paper_gains, piecewise_disturbance
 
 # a coarser step than the book's keeps these runs to a few seconds; the logic is the same
 DT = 2e-3
@@ -155,7 +155,7 @@ def test_sweep_study_record_part(mixed, pw):
 
 def test_scaled_crossing_solves_the_drawn_curves(mixed):
     from fdsc import simulate_batch
-    from fdsc.paper.nonstationary import scaled_crossing
+    from fdsc.paper.reproduced.nonstationary import scaled_crossing
 
     rho = scaled_crossing(mixed, 1 / 5000)
     assert 0.15 < rho < 0.25
@@ -170,7 +170,7 @@ def test_scaled_crossing_solves_the_drawn_curves(mixed):
 
 def test_comparator_check_prose_counts_and_factors():
     # made-up energies: FDSC better than the best fixed controller at one point of three
-    from fdsc.paper.nonstationary import ComparatorCheck
+    from fdsc.paper.reproduced.nonstationary import ComparatorCheck
 
     check = ComparatorCheck("mixed", np.array([0.0, 0.1, 0.2]), ("open loop", "open loop", "PassC-LF"),
                             np.array([1.0, 2.0, 4.0]), np.array([0.5, 3.0, 8.0]),

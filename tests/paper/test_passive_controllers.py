@@ -3,9 +3,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from fdsc import band_peak, sigma_max
-from fdsc.paper.data import aircraft, paper_bands, paper_gains
-from fdsc.paper.names import GAIN_ORDER
-from fdsc.paper.passive_controllers import (
+from fdsc.paper.reproduced.passive_controllers import (
     EPSILON_GRID,
     HF_SIGMA_GRID,
     DirectCrosscheck,
@@ -27,8 +25,10 @@ from fdsc.paper.passive_controllers import (
     sigma_curves,
     sigma_sensitivity,
 )
-from fdsc.paper.results import RecordPart
-from fdsc.paper.verdict import VERDICTS
+from fdsc.paper.shared.data import aircraft, paper_bands, paper_gains
+from fdsc.paper.shared.names import GAIN_ORDER
+from fdsc.paper.shared.results import RecordPart
+from fdsc.paper.shared.verdict import VERDICTS
 
 REQUIRED = {"id", "source", "paper", "recomputed", "verdict", "note"}
 

@@ -1,4 +1,4 @@
-"""fdsc.paper.printed_bounds: the four printed bounds, one verdict each, every reading."""
+"""fdsc.paper.reproduced.printed_bounds: the four printed bounds, one verdict each, every reading."""
 
 import json
 
@@ -7,16 +7,16 @@ from jsonschema import Draft202012Validator
 from numpy.testing import assert_allclose
 
 from fdsc import band_peak, sigma_max
-from fdsc.paper.data import aircraft, paper_bands, paper_data, paper_gains
-from fdsc.paper.names import GAIN_BANDS, GAIN_ORDER
-from fdsc.paper.printed_bounds import (
+from fdsc.paper.appendix.reproduction_report import record_schema
+from fdsc.paper.reproduced.printed_bounds import (
     BOUND_IDS,
     PrintedBounds,
     printed_bound_entries,
     printed_bounds,
 )
-from fdsc.paper.reproduction_report import record_schema
-from fdsc.paper.verdict import verdict
+from fdsc.paper.shared.data import aircraft, paper_bands, paper_data, paper_gains
+from fdsc.paper.shared.names import GAIN_BANDS, GAIN_ORDER
+from fdsc.paper.shared.verdict import verdict
 
 
 @pytest.fixture(scope="module")

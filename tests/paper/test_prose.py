@@ -1,9 +1,9 @@
-"""fdsc.paper.prose: the one number formatter of the book's prose."""
+"""fdsc.paper.shared.prose: the one number formatter of the book's prose."""
 
 import numpy as np
 import pytest
 
-from fdsc.paper.prose import count, num, pct, span, times
+from fdsc.paper.shared.prose import count, num, pct, span, times
 
 
 @pytest.mark.parametrize(("x", "digits", "text"), [
@@ -60,7 +60,7 @@ def test_glued_text_reads_back_as_printed(monkeypatch):
     from IPython.core.formatters import PlainTextFormatter
     from myst_nb.core.variables import format_plain_text
 
-    from fdsc.paper import prose
+    from fdsc.paper.shared import prose
 
     glued = {}
     monkeypatch.setattr(myst_nb, "glue", lambda name, value, display: glued.update({name: value}))

@@ -2,7 +2,7 @@ import numpy as np
 import pytest
 
 from fdsc.paper.record import FIGURE_IDS, reproduction_record
-from fdsc.paper.verdict import VERDICTS
+from fdsc.paper.shared.verdict import VERDICTS
 
 
 def test_record_entries_have_the_required_fields():
@@ -70,10 +70,11 @@ def test_chapters_on_several_processes_give_the_record_of_one(monkeypatch, tmp_p
     # record as the same chapters computed here, one after the other: equal to the record's ten
     # significant digits (the workers cap their BLAS threads, so a sum may round differently in
     # its last bits than in this process, e.g. 2.382734138221e-05 against 2.382734138233e-05)
-    from fdsc.paper import frequency_ranges, inputs
-    from fdsc.paper.cache import CACHE_ENV, shared_results
-    from fdsc.paper.cli import to_jsonable
     from fdsc.paper.record import chapter_parts
+    from fdsc.paper.reproduced import frequency_ranges
+    from fdsc.paper.shared import inputs
+    from fdsc.paper.shared.cache import CACHE_ENV, shared_results
+    from fdsc.paper.shared.results import to_jsonable
 
     chapters = (inputs, frequency_ranges)
     monkeypatch.setenv(CACHE_ENV, str(tmp_path / "parallel"))
@@ -86,8 +87,8 @@ def test_chapters_on_several_processes_give_the_record_of_one(monkeypatch, tmp_p
     assert to_jsonable([(p.entries, p.figures) for p in parallel]) == to_jsonable(
         [(p.entries, p.figures) for p in serial])
     # the worker processes wrote their results into the shared folder (the cached results of the
-    # chapter frequency_ranges live in its sibling modules, e.g. fdsc.paper.paley_wiener)
-    assert any((tmp_path / "parallel").glob("fdsc.paper.paley_wiener.*.pickle"))
+    # chapter frequency_ranges live in its sibling modules, e.g. fdsc.paper.reproduced.paley_wiener)
+    assert any((tmp_path / "parallel").glob("fdsc.paper.reproduced.paley_wiener.*.pickle"))
 
 
 @pytest.mark.parametrize("value", ["0", "-2", "two", "1.5"])

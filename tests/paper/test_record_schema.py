@@ -9,11 +9,10 @@ import pytest
 from jsonschema import Draft202012Validator
 
 import fdsc.paper
-from fdsc.paper.cli import to_jsonable
+from fdsc.paper.appendix.reproduction_report import record_schema
 from fdsc.paper.record import reproduction_record
-from fdsc.paper.reproduction_report import record_schema
-from fdsc.paper.results import entry
-from fdsc.paper.verdict import CLAIM_VERDICTS, VERDICTS
+from fdsc.paper.shared.results import entry, to_jsonable
+from fdsc.paper.shared.verdict import CLAIM_VERDICTS, VERDICTS
 
 SCHEMA_FILE = Path(fdsc.paper.__file__).resolve().parent / "data" / "record.schema.json"
 CONTROLLERS = ("PassC-EF", "PassC-LF", "PassC-HF", "FDSC", "FDSC (our Q)", "FDSC (candidate ẋ)")

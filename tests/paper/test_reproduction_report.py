@@ -3,9 +3,7 @@
 import numpy as np
 import pytest
 
-from fdsc.paper.record import PAPER_FIGURES
-from fdsc.paper.report import compact, html_table
-from fdsc.paper.reproduction_report import (
+from fdsc.paper.appendix.reproduction_report import (
     NO_CHECKLIST,
     NO_CLAIM,
     claim_rows,
@@ -17,8 +15,10 @@ from fdsc.paper.reproduction_report import (
     printed_rows,
     summary,
 )
-from fdsc.paper.results import entry
-from fdsc.paper.verdict import CLAIM_VERDICTS, VERDICTS
+from fdsc.paper.record import PAPER_FIGURES
+from fdsc.paper.shared.report import compact, html_table
+from fdsc.paper.shared.results import entry
+from fdsc.paper.shared.verdict import CLAIM_VERDICTS, VERDICTS
 
 
 def _claim(source, verdict, value=0.1):

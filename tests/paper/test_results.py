@@ -2,8 +2,8 @@
 
 import pytest
 
-from fdsc.paper.results import RecordPart, entry
-from fdsc.paper.verdict import VERDICTS
+from fdsc.paper.shared.results import RecordPart, entry
+from fdsc.paper.shared.verdict import VERDICTS
 
 
 def test_entry_has_the_required_keys_and_extras():

@@ -2,10 +2,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from fdsc.paper.data import paper_disturbance, run_controller
-from fdsc.paper.names import CONTROLLERS
-from fdsc.paper.results import RecordPart
-from fdsc.paper.stationary import (
+from fdsc.paper.reproduced.stationary import (
     OUR_Q_NAME,
     Claim,
     HalvingRow,
@@ -15,7 +12,10 @@ from fdsc.paper.stationary import (
     stationary_runs,
     step_halving,
 )
-from fdsc.paper.verdict import VERDICTS
+from fdsc.paper.shared.data import paper_disturbance, run_controller
+from fdsc.paper.shared.names import CONTROLLERS
+from fdsc.paper.shared.results import RecordPart
+from fdsc.paper.shared.verdict import VERDICTS
 from fdsc.simulate import time_grid
 
 HORIZON = 5.0

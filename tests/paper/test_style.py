@@ -1,8 +1,8 @@
-"""fdsc.paper.style: one colour, marker and line style per controller, gain and band."""
+"""fdsc.paper.shared.style: one colour, marker and line style per controller, gain and band."""
 
 import pytest
 
-from fdsc.paper.style import BAND_CONTROLLER, GAIN_CONTROLLER, STYLES, band_color, style
+from fdsc.paper.shared.style import BAND_CONTROLLER, GAIN_CONTROLLER, STYLES, band_color, style
 
 
 def test_paper_colours():

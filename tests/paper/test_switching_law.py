@@ -1,10 +1,10 @@
 import numpy as np
 import pytest
 
-from fdsc.paper.data import our_q, paper_modes, piecewise_disturbance, run_controller
-from fdsc.paper.results import RecordPart
-from fdsc.paper.switching_law import law_conflict, record_part, switching_statistics
-from fdsc.paper.verdict import VERDICTS
+from fdsc.paper.reproduced.switching_law import law_conflict, record_part, switching_statistics
+from fdsc.paper.shared.data import our_q, paper_modes, piecewise_disturbance, run_controller
+from fdsc.paper.shared.results import RecordPart
+from fdsc.paper.shared.verdict import VERDICTS
 from fdsc.simulate import time_grid
 
 

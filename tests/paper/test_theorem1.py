@@ -4,9 +4,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from fdsc.paper.data import our_q
-from fdsc.paper.results import RecordPart
-from fdsc.paper.theorem1 import (
+from fdsc.paper.reproduced.theorem1 import (
     AutonomousRuns,
     LyapunovJumps,
     Statement1Check,
@@ -19,7 +17,9 @@ from fdsc.paper.theorem1 import (
     theorem1_table,
     window_ratios,
 )
-from fdsc.paper.verdict import VERDICTS
+from fdsc.paper.shared.data import our_q
+from fdsc.paper.shared.results import RecordPart
+from fdsc.paper.shared.verdict import VERDICTS
 
 REQUIRED = ("id", "source", "paper", "recomputed", "verdict", "note")
 

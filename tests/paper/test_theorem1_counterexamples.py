@@ -4,8 +4,7 @@ import pytest
 from fdsc import simulate_stream
 from fdsc.lmi import _sym
 from fdsc.lyapunov_jumps import certify_switching
-from fdsc.paper.results import RecordPart
-from fdsc.paper.theorem1_counterexamples import (
+from fdsc.paper.repairs.theorem1_counterexamples import (
     _ZERO,
     CAUSES,
     REFINE,
@@ -18,6 +17,7 @@ from fdsc.paper.theorem1_counterexamples import (
     smallest_case,
     smallest_table,
 )
+from fdsc.paper.shared.results import RecordPart
 from fdsc.switching import certify_q, theorem1_matrices
 
 # the smallest divergent case of the default search (record entry theorem1_counterexamples,
@@ -97,7 +97,7 @@ def test_lmi_witness_closed_form():
     # A_0 = −1, A_1 = −2, B = C = 1, D = 0, LF [0, 1], HF [10, ∞), Q = 1: L_0 = 1/2 and
     # M_0 = [−1; 1]ᵀ diag(−1 − 1, 1 + 100)[−1; 1] = 99, so t_s = 2·99 + 1 and (T1-1) = −199 + 99
     from fdsc.bands import Band
-    from fdsc.paper.theorem1_counterexamples import lmi_witness
+    from fdsc.paper.repairs.theorem1_counterexamples import lmi_witness
     from fdsc.plant import LTISystem
     modes = [LTISystem([[-1.0]], [[1.0]], [[1.0]], [[0.0]]),
              LTISystem([[-2.0]], [[1.0]], [[1.0]], [[0.0]])]
@@ -120,7 +120,7 @@ def test_lmi_witness_closed_form():
 def test_lmi_witness_on_the_smallest_counterexample_and_q_scaling():
     from scipy.linalg import solve_continuous_lyapunov
 
-    from fdsc.paper.theorem1_counterexamples import CaseOutcome, lmi_witness, q_scaling
+    from fdsc.paper.repairs.theorem1_counterexamples import CaseOutcome, lmi_witness, q_scaling
     case = search_case(*SMALLEST[:2])
     w = lmi_witness(case.modes, case.bands, case.Q)
     assert w.holds()
@@ -175,7 +175,7 @@ def test_the_divergence_monitor_flags_every_clean_certified_counterexample():
     import warnings
 
     from fdsc import Case, Sinusoids, UnstableRunWarning, simulate_batch
-    from fdsc.paper.theorem1_counterexamples import counterexample_search
+    from fdsc.paper.repairs.theorem1_counterexamples import counterexample_search
 
     search = counterexample_search()
     clean = search.clean()

@@ -1,10 +1,10 @@
-"""Tests of the chapter module fdsc.paper.three_mode."""
+"""Tests of the chapter module fdsc.paper.repairs.three_mode."""
 
 import numpy as np
 import pytest
 
-from fdsc.paper import three_mode as tm
-from fdsc.paper.prose import num
+from fdsc.paper.repairs import three_mode as tm
+from fdsc.paper.shared.prose import num
 
 
 def test_score_weights_printed_mf_negative_second_order_in_band():
@@ -64,7 +64,7 @@ def test_prose_and_table_are_text_with_reader_names(short_table):
     t = short_table
     p = t.prose()
     assert all(isinstance(v, str) for v in p.values())
-    # the worst MF ratio of the three-mode law, as fdsc.paper.prose prints it
+    # the worst MF ratio of the three-mode law, as fdsc.paper.shared.prose prints it
     worst = max(t.value(f"MF tone {w:g} rad/s", "FDSC-3 (2nd order, Q = I)") for w in tm.MF_TONES)
     assert p["mf3_max"] == num(worst)
     rows = t.table()

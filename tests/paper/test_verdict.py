@@ -1,7 +1,7 @@
 import pytest
 
-from fdsc.paper import claims
-from fdsc.paper.verdict import (
+from fdsc.paper.reproduced import claims
+from fdsc.paper.shared.verdict import (
     CLAIM_VERDICT_RULES,
     CLAIM_VERDICTS,
     VERDICT_RULES,

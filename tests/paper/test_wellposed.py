@@ -3,7 +3,7 @@
 import numpy as np
 
 from fdsc import LTISystem
-from fdsc.paper.wellposed import (
+from fdsc.paper.repairs.wellposed import (
     LAW_CASES,
     LAW_GRIDS,
     convergence_study,
@@ -57,7 +57,7 @@ def test_law_study_dwell_bounds_switches_and_hysteresis_does_not():
 
 
 def test_absolute_hysteresis_is_well_posed_only_where_nothing_switches():
-    from fdsc.paper.wellposed import LAW_CASES
+    from fdsc.paper.repairs.wellposed import LAW_CASES
     study = law_study()
     grid = LAW_GRIDS["hysteresis_abs"]
     for h in grid:
@@ -67,8 +67,8 @@ def test_absolute_hysteresis_is_well_posed_only_where_nothing_switches():
 
 
 def test_dwell_law_against_the_comparator_set():
-    from fdsc.paper.comparators import comparators
-    from fdsc.paper.wellposed import LAW_CASES, against_comparators, comparator_energies
+    from fdsc.paper.repairs.wellposed import LAW_CASES, against_comparators, comparator_energies
+    from fdsc.paper.shared.comparators import comparators
     study = law_study()
     extra = comparator_energies(dt=study.dt)
     rows = against_comparators(study, extra)

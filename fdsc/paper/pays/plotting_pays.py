@@ -1,0 +1,135 @@
+"""Figures of the chapters 'baselines' and 'monte_carlo' (result in, Axes out)."""
+
+import numpy as np
+
+from fdsc.paper.shared.plotting import _axes
+from fdsc.paper.shared.style import STYLES, band_color, style
+
+__all__ = ["STYLE", "plot_stationary_baselines", "plot_family_baselines", "plot_mc_ratio", "plot_mc_cdf"]
+
+#: Line style of each controller of the comparisons (colour, marker, line style): the book's one
+#: style map (:data:`fdsc.paper.shared.style.STYLES`).
+STYLE = STYLES
+
+
+def _style(name, k):
+    st = style(name, k)
+    return st["color"], st["marker"], st["linestyle"]
+
+
+def plot_stationary_baselines(result, ax=None):
+    """Energy ratio ∫zᵀz/∫d² of every controller under the stationary LF and HF disturbances.
+
+    Parameters
+    ----------
+    result : Baselines
+    ax : Axes, optional
+
+    Returns
+    -------
+    Axes
+    """
+    ax = _axes(ax, (7, 4))
+    lf, hf = result.family("stationary")
+    y = np.arange(len(result.names))
+    for off, s, color in ((-0.2, lf, band_color("LF")), (0.2, hf, band_color("HF"))):
+        ax.barh(y + off, [s.energy[n] / s.input_energy for n in result.names], height=0.38, color=color,
+                label=f"{s.label} disturbance (paper eq. ({56 if s.label == 'LF' else 57}))")
+    ax.set_yticks(y, result.names)
+    ax.invert_yaxis()
+    ax.set_xscale("log")
+    ax.set_xlabel(r"energy ratio $\int z^\top z\,dt \,/ \int d^2\,dt$ over 500 s [-]")
+    ax.legend(fontsize=8, loc="lower right")
+    ax.grid(True, axis="x", which="both", alpha=0.3)
+    return ax
+
+
+def plot_family_baselines(result, family, ax=None, *, names=None):
+    """Energies of the controllers over the ρ_p family (paper Fig. 7) or the ρ_t family (Fig. 8),
+    the latter with the ideal segment law.
+
+    Parameters
+    ----------
+    result : Baselines
+    family : {"mixed", "piecewise"}
+    ax : Axes, optional
+    names : sequence of str, optional
+        Controllers to draw (default all).
+
+    Returns
+    -------
+    Axes
+    """
+    ax = _axes(ax)
+    param, energy = result.energies(family)
+    for k, n in enumerate(result.names if names is None else names):
+        color, marker, ls = _style(n, k)
+        ax.semilogy(param, energy[n], color=color, marker=marker, ls=ls, ms=4, lw=1.2, label=n)
+    if family == "piecewise":
+        ax.semilogy(param, result.ideal_piecewise, color="k", ls="-.", lw=2.0, alpha=0.6,
+                    label="ideal segment law")
+    ax.set_xlabel(r"$\rho_p$ [-]" if family == "mixed" else r"$\rho_t$ [-]")
+    ax.set_ylabel(r"$\int z^\top z\,dt$ over the run [-]")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7, ncol=2)
+    return ax
+
+
+def plot_mc_ratio(result, ax=None, *, against="oracle"):
+    """FDSC's energy over the best fixed controller's, per draw, against the draw's α.
+
+    Parameters
+    ----------
+    result : MonteCarlo
+    ax : Axes, optional
+    against : {"oracle", "advance"}
+        The best fixed controller of each draw, or the one chosen in advance.
+
+    Returns
+    -------
+    Axes
+    """
+    ax = _axes(ax)
+    for k, n in enumerate(result.switched):
+        color, marker, _ = _style(n, k)
+        ax.scatter(result.alpha, result.ratio(n, against), s=9, color=color, marker=marker, lw=0.8,
+                   label=f"{n}, tones")
+        ax.scatter(result.noise_alpha, result.ratio(n, against, noise=True), s=40, facecolors="none",
+                   edgecolors=color, marker="o", lw=1.0, label=f"{n}, band noise")
+    ax.axhline(1.0, color="k", lw=0.8, ls=":")
+    ax.set_yscale("log")
+    ax.set_xlabel(r"HF share of the power $\alpha$ [-]")
+    ref = "the best fixed controller of the draw" if against == "oracle" else \
+        f"{result.in_advance} (fixed in advance)"
+    ax.set_ylabel(f"energy / energy of\n{ref} [-]")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7, ncol=2)
+    return ax
+
+
+def plot_mc_cdf(result, ax=None, *, against="oracle"):
+    """Empirical distribution of FDSC's energy ratio over the tone draws.
+
+    Parameters
+    ----------
+    result : MonteCarlo
+    ax : Axes, optional
+    against : {"oracle", "advance"}
+
+    Returns
+    -------
+    Axes
+    """
+    ax = _axes(ax)
+    for k, n in enumerate(result.switched):
+        color, _, ls = _style(n, k)
+        r = np.sort(result.ratio(n, against))
+        ax.step(r, np.arange(1, r.size + 1) / r.size, where="post", color=color, ls=ls, label=n)
+    ax.axvline(1.0, color="k", lw=0.8, ls=":")
+    ax.set_xscale("log")
+    ax.set_xlabel("energy / energy of the best fixed controller of the draw [-]"
+                  if against == "oracle" else f"energy / energy of {result.in_advance} [-]")
+    ax.set_ylabel("share of draws [-]")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    return ax

@@ -1,0 +1,393 @@
+"""Figure helpers: each takes data returned by :mod:`fdsc.experiments` and returns Axes.
+
+Only the plotting modules import matplotlib (this one, :mod:`fdsc.paper.shared.plotting_axes`,
+:mod:`fdsc.paper.shared.plotting_runs`, whose figures are re-exported here, and the figures of the
+does-FDSC-pay chapters). No function calls ``plt.show()`` or changes rcParams.
+"""
+
+import math
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+from fdsc.paper.shared.plotting_axes import _axes, _outside_legend, _symlog
+from fdsc.paper.shared.plotting_runs import (
+    plot_l2_curves,
+    plot_outputs,
+    plot_p1,
+    plot_p2,
+    plot_sigma_timeline,
+    plot_sweep,
+)
+from fdsc.paper.shared.style import STYLES, band_color, style
+
+__all__ = [
+    "plot_psi_weights",
+    "plot_dominance_vs_rho",
+    "plot_localized_dominance",
+    "plot_sigma_sweep",
+    "plot_hf_sigma_scan",
+    "plot_gap",
+    "plot_power_vs_alpha",
+    "plot_epf_series",
+    "plot_prop1_cases",
+    "plot_fdsc_diagram",
+    "plot_outputs",
+    "plot_l2_curves",
+    "plot_sigma_timeline",
+    "plot_sweep",
+    "plot_p1",
+    "plot_p2",
+]
+
+
+#: ``{controller: (colour, line style)}``, from the book's one style map (:mod:`fdsc.paper.shared.style`).
+CONTROLLER_STYLES = {name: (color, ls) for name, (color, _, ls) in STYLES.items()}
+
+#: ``{band: colour}``: a band is drawn in the colour of the controller designed for it.
+BAND_COLORS = {band: band_color(band) for band in ("LF", "MF", "HF", "EF")}
+
+
+def plot_psi_weights(result, kind, ax=None, *, real_part=True):
+    """Weight ``[jω;1]*Ψ[jω;1]`` of one band over ±ω (symlog axes), band shaded.
+
+    Parameters
+    ----------
+    result : fdsc.paper.reproduced.frequency_ranges.PsiWeights
+        Output of :func:`fdsc.paper.reproduced.frequency_ranges.psi_weights`.
+    kind : {"LF", "MF", "HF"}
+        The band to draw.
+    ax : matplotlib Axes, optional
+        Where to draw (default: a new figure).
+    real_part : bool
+        Also draw the weight of Re Ψ (what a real signal sees), where it differs.
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    ax = _axes(ax)
+    w, d = result.omega, result[kind]
+    color = BAND_COLORS[kind]
+    ax.plot(w, d.weight, color=color, label=r"$[j\omega;1]^*\Psi[j\omega;1]$")
+    if real_part and not np.allclose(d.weight, d.real_weight):
+        ax.plot(w, d.real_weight, color="k", ls="--", label=r"weight of Re $\Psi$ (real signals)")
+    hi = d.upper if math.isfinite(d.upper) else np.abs(w).max()
+    for sgn in (1, -1):
+        a, b = sorted((sgn * d.lower, sgn * hi))
+        ax.axvspan(a, b, color=color, alpha=0.12, lw=0, label="band" if sgn == 1 else None)
+    ax.axhline(0, color="0.5", lw=0.8)
+    ax.set_xscale("symlog", linthresh=1e-1)
+    ticks = [-1e3, -1e2, -1e1, -1, 0, 1, 1e1, 1e2, 1e3]
+    ax.set_xticks(ticks, ["$-10^3$", "", "$-10$", "", "0", "", "$10$", "", "$10^3$"])
+    _symlog(ax, "y", 1.0)
+    ax.set_xlabel(r"$\omega$ [rad/s]")
+    ax.set_ylabel("weight [(rad/s)$^2$]")
+    ax.set_title(d.label)
+    ax.legend(fontsize=7, loc="lower center")
+    return ax
+
+
+def plot_dominance_vs_rho(result, ax=None):
+    """α(Ω_3) of ``d_h + ρ_p d_l`` against ρ_p: closed form and FFT estimate.
+
+    Parameters
+    ----------
+    result : fdsc.paper.reproduced.frequency_ranges.DominanceVsRho
+        Output of :func:`fdsc.paper.reproduced.frequency_ranges.dominance_vs_rho`.
+    ax : matplotlib Axes, optional
+        Where to draw (default: a new figure).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    ax = _axes(ax)
+    ax.plot(result.rho_p, result.exact, "k-", label="closed form (mean powers)")
+    ax.plot(result.rho_p, result.fft, "o", mfc="none", color="tab:orange",
+            label=f"FFT of a {result.horizon:g} s record (Hann)")
+    ax.set_xlabel(r"$\rho_p$ [-]")
+    ax.set_ylabel(r"dominance degree $\alpha(\Omega_3)$ [-]")
+    ax.legend()
+    return ax
+
+
+def plot_localized_dominance(result, ax=None):
+    """α(Ω_1, T_l) and α(Ω_3, T_l) along the piecewise disturbance, segment limits marked.
+
+    Parameters
+    ----------
+    result : fdsc.paper.reproduced.frequency_ranges.PiecewiseDominance
+        Output of :func:`fdsc.paper.reproduced.frequency_ranges.localized_dominance_piecewise`.
+    ax : matplotlib Axes, optional
+        Where to draw (default: a new figure).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    ax = _axes(ax)
+    for kind, name in (("LF", r"$\alpha(\Omega_1, T_l)$"), ("HF", r"$\alpha(\Omega_3, T_l)$")):
+        ax.plot(result.t, result.alpha[kind], color=BAND_COLORS[kind], label=name)
+    for b in result.breaks[1:-1]:
+        ax.axvline(b, color="0.4", ls=":", lw=1)
+    ax.set_xlabel("window centre $t$ [s]")
+    ax.set_ylabel("time-localized dominance [-]")
+    ax.set_ylim(-0.05, 1.05)
+    ax.legend(title=f"windows of {result.window_length:g} s")
+    return ax
+
+
+def plot_sigma_sweep(result, ax=None, *, bands=None, labels=None, marks=None):
+    """σ_max(G(jω)) curves on log-log axes, with band limits marked (paper Fig. 3).
+
+    Parameters
+    ----------
+    result : fdsc.paper.reproduced.passive_controllers.SigmaCurves
+        Output of :func:`fdsc.paper.reproduced.passive_controllers.sigma_curves`.
+    ax : matplotlib Axes, optional
+        Where to draw (default: a new figure).
+    bands : iterable of float, optional
+        Frequencies of band limits to mark (default the result's ``band_limits``).
+    labels : dict, optional
+        ``{gain name: legend label}`` (default: the gain with its controller, e.g.
+        ``"K_f1 (PassC-LF)"``, for the printed gains' names, else the name).
+    marks : iterable of (float, float), optional
+        Points ``(ω, σ_max)`` to mark with dots (e.g. band peaks).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    from fdsc.paper.shared.names import GAIN_BANDS
+
+    ax = _axes(ax)
+    styles = ("-", "--", "-.", ":")
+    for k, (name, s) in enumerate(result.sigma.items()):
+        if labels is not None:
+            label = labels[name]
+        else:
+            label = f"{name} (PassC-{GAIN_BANDS[name]})" if name in GAIN_BANDS else name
+        # curves of near-equal gains (K_f2 and K_e) would hide each other without distinct styles
+        ax.loglog(result.omega, s, ls=styles[k % len(styles)], lw=1.6, label=label)
+    for wb in result.band_limits if bands is None else bands:
+        ax.axvline(wb, color="0.5", ls=":", lw=1)
+    for w, v in marks or ():
+        ax.plot(w, v, "k.", ms=4)
+    ax.set_xlabel(r"$\omega$ [rad/s]")
+    ax.set_ylabel(r"$\sigma_{max}(G(j\omega))$ [-]")
+    ax.legend()
+    return ax
+
+
+def plot_hf_sigma_scan(result, ax=None, *, reference=True):
+    """HF designs against σ: LMI γ, in-band sweep γ and out-of-band peak (log axes).
+
+    Parameters
+    ----------
+    result : fdsc.paper.reproduced.passive_controllers.HFBest
+        Output of :func:`fdsc.paper.reproduced.passive_controllers.hf_best` (σ = 0 is not drawn on the
+        log axis).
+    ax : matplotlib Axes, optional
+        Where to draw (default: a new figure).
+    reference : bool, optional
+        Draw the in-band and out-of-band peaks of the printed K_f3 as horizontal lines.
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    ax = _axes(ax)
+    scan = result.scan
+    pos = scan.sigma > 0
+    s = scan.sigma[pos]
+    ax.loglog(s, scan.gamma_lmi[pos], "o-", label=r"LMI bound $\gamma$ (in band)")
+    ax.loglog(s, scan.gamma_sweep[pos], "s--", label="in-band peak (sweep)")
+    ax.loglog(s, scan.out_of_band[pos], "^:",
+              label=rf"out-of-band peak ($|\omega| \leq {scan.band_edge:g}$)")
+    if reference:
+        ax.axhline(result.K_f3_in_band, color="tab:green", lw=1, label="K_f3 in band")
+        ax.axhline(result.K_f3_out_of_band, color="tab:red", lw=1, label="K_f3 out of band")
+    ax.set_xlabel(r"fictitious-pole parameter $\sigma$ [rad/s]")
+    ax.set_ylabel(r"$\sigma_{max}$ peak [-]")
+    ax.legend(fontsize=8)
+    return ax
+
+
+def plot_gap(result, ax=None, *, band_limits=None):
+    """paper Remark 3's gap function for each candidate out-of-band gain (semilog-x, zero marked).
+
+    Parameters
+    ----------
+    result : fdsc.paper.reproduced.passive_controllers.GapCurves
+        Output of :func:`fdsc.paper.reproduced.passive_controllers.gap_curves` or
+        :func:`fdsc.paper.reproduced.passive_controllers.remark3_gap`.
+    ax : matplotlib Axes, optional
+        Where to draw (default: a new figure).
+    band_limits : iterable of float, optional
+        Frequencies of band limits to mark (default the result's ``band_limits``).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    ax = _axes(ax)
+    for label, g in result.gap.items():
+        ax.semilogx(result.omega, g, label=label)
+    ax.axhline(0, color="0.4", lw=0.8)
+    for wb in result.band_limits if band_limits is None else band_limits:
+        ax.axvline(wb, color="0.5", ls=":", lw=1)
+    ax.set_yscale("symlog", linthresh=1e-1)
+    ax.set_xlabel(r"$\omega$ [rad/s]")
+    ax.set_ylabel(r"gap$(K^{in}, K^{out}, \omega)$ [-]")
+    ax.legend(fontsize=8)
+    return ax
+
+
+def plot_power_vs_alpha(data, ax: plt.Axes | None = None) -> plt.Axes:
+    """Steady-state average FD-EPF against α(Ω_3) (symlog y), sign changes marked (paper Remark 1).
+
+    Parameters
+    ----------
+    data : PowerVsAlpha
+        Result of :func:`fdsc.paper.reproduced.frequency_selective.power_vs_alpha`.
+    ax : matplotlib Axes, optional
+        Axes to draw on (default: a new figure).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    ax = _axes(ax)
+    for label, v in data.curves.items():
+        # the colour of the loop's gain (K_f1: PassC-LF, K_f3: PassC-HF), the line of the term
+        st = style(label.split(" loop")[0])
+        line, = ax.plot(data.alpha, v, color=st["color"],
+                        ls="-" if "Ω_3" in label else "--", label=label)
+        a = data.crossing.get(label)
+        if a is not None:
+            ax.axvline(a, color=line.get_color(), ls=":", lw=1)
+    ax.axhline(0, color="0.4", lw=0.8)
+    _symlog(ax, "y", 1.0)
+    ax.set_xlabel(r"dominance degree $\alpha(\Omega_3)$ of the disturbance [-]")
+    ax.set_ylabel(r"average FD-EPF $P_a$ [-]")
+    _outside_legend(ax)
+    return ax
+
+
+def plot_epf_series(data, ax: plt.Axes | None = None, *, legend: bool = True) -> plt.Axes:
+    """Instantaneous FD-EPF (paper eq. (29)) of both law terms (min–max band per bin) and their
+    running averages (paper eq. (28), thick).
+
+    Parameters
+    ----------
+    data : EPFSeries
+        Result of :func:`fdsc.paper.reproduced.frequency_selective.epf_time_series`.
+    ax : matplotlib Axes, optional
+        Axes to draw on (default: a new figure).
+    legend : bool, optional
+        Draw a legend below the Axes (off the data); with several panels, one is enough.
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    ax = _axes(ax)
+    for kind, color in (("LF", BAND_COLORS["LF"]), ("HF", BAND_COLORS["HF"])):
+        ax.fill_between(data.t, data.P_t_lo[kind], data.P_t_hi[kind], step="post",
+                        color=color, alpha=0.3, lw=0,
+                        label=f"$P_t$, {kind} term (min–max per {data.bin * 1e3:g} ms)")
+        for edge in (data.P_t_lo[kind], data.P_t_hi[kind]):  # a smooth P_t has a thin band
+            ax.plot(data.t, edge, color=color, lw=0.4, alpha=0.6, drawstyle="steps-post")
+        ax.plot(data.t, data.P_a[kind], color=color, lw=2, label=f"running $P_a$, {kind} term")
+    ax.axhline(0, color="0.4", lw=0.8)
+    _symlog(ax, "y", 1e-3)
+    ax.set_xlabel("$t$ [s]")
+    ax.set_ylabel("FD-EPF [-]")
+    ax.set_title(f"{data.gain} loop, {data.disturbance} disturbance", fontsize=9)
+    if legend:
+        ax.legend(fontsize=7, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.2))
+    return ax
+
+
+def plot_prop1_cases(rows, ax: plt.Axes | None = None) -> plt.Axes:
+    """S(Ω^in) against S(Ω^out) for every case (symlog axes); the quadrant Proposition 1 (paper
+    eqs. (21), (22)) claims shaded.
+
+    Parameters
+    ----------
+    rows : Prop1Cases
+        Result of :func:`fdsc.paper.reproduced.frequency_selective.prop1_cases`.
+    ax : matplotlib Axes, optional
+        Axes to draw on (default: a new figure).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    ax = _axes(ax)
+    markers = {"infinite, real Ψ": "o", "infinite, MF": "s", "window from rest": "^",
+               "infinite, Q weighting one state": "D"}
+    for kind, m in markers.items():
+        sel = [c for c in rows.cases if c.kind == kind]
+        if sel:
+            ax.scatter([c.S_in for c in sel], [c.S_out for c in sel], marker=m, s=18,
+                       facecolors="none", edgecolors=["tab:green" if c.passed else "tab:red"
+                                                     for c in sel], label=kind)
+    _symlog(ax, "x", 1e-4)
+    _symlog(ax, "y", 1e-4)
+    ax.axvline(0, color="0.4", lw=0.8)
+    ax.axhline(0, color="0.4", lw=0.8)
+    x0, x1 = ax.get_xlim()
+    y0, y1 = ax.get_ylim()
+    ax.fill_between([0, x1], y0, 0, color="tab:green", alpha=0.07, lw=0)
+    ax.set_xlabel(r"$S(\Omega^{in}, Q^{in})$ (or its average) [-]")
+    ax.set_ylabel(r"$S(\Omega^{out}, Q^{out})$ [-]")
+    ax.set_xlim(x0, x1)
+    ax.set_ylim(y0, y1)
+    _outside_legend(ax)
+    ax.get_legend().set_title("green: holds, red: fails", prop={"size": 7})
+    return ax
+
+
+def plot_fdsc_diagram(ax: plt.Axes | None = None) -> plt.Axes:
+    """Paper Fig. 1: the closed loop with FDSC, drawn as a block diagram (no data).
+
+    Parameters
+    ----------
+    ax : matplotlib Axes, optional
+        Axes to draw on (default: a new figure).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    from matplotlib.patches import FancyArrowPatch, FancyBboxPatch
+
+    ax = _axes(ax, figsize=(9, 4.2))
+    ax.set_xlim(0, 10)
+    ax.set_ylim(0, 5)
+    ax.axis("off")
+
+    def box(x, y, w, h, text, color):
+        ax.add_patch(FancyBboxPatch((x, y), w, h, boxstyle="round,pad=0.05", fc=color, ec="k"))
+        ax.text(x + w / 2, y + h / 2, text, ha="center", va="center", fontsize=9)
+
+    def arrow(a, b, text=None, off=(0, 0.15)):
+        ax.add_patch(FancyArrowPatch(a, b, arrowstyle="-|>", mutation_scale=12, lw=1.2))
+        if text:
+            ax.text((a[0] + b[0]) / 2 + off[0], (a[1] + b[1]) / 2 + off[1], text, ha="center",
+                    fontsize=9)
+
+    box(3.6, 3.3, 2.8, 1.1, "plant\n$\\dot x = Ax + B_1 d + B_2 u$\n$z = Cx + D_1 d + D_2 u$", "#e8f0fb")
+    box(0.4, 1.0, 2.6, 1.2, "passive gains\n$K_1 = K_{f_1}$ (LF), $K_2 = K_{f_3}$ (HF)", "#fdf1e0")
+    box(3.7, 0.6, 2.6, 1.6, "switching law\n$\\sigma(t) = \\arg\\max_i$\n"
+        "$[\\dot x; x]^*(\\Psi_i \\otimes Q_i)[\\dot x; x]$", "#eaf6ea")
+    box(7.0, 1.0, 2.4, 1.2, "FD-EPF of each range\n$P_t(\\Omega_i, Q_i, t)$", "#f5eaf6")
+    arrow((1.2, 3.85), (3.6, 3.85), "$d(t)$")
+    arrow((6.4, 3.85), (9.2, 3.85), "$z(t)$")
+    arrow((6.4, 3.55), (8.2, 2.2), "$x, \\dot x$", off=(0.5, 0.0))
+    arrow((7.0, 1.6), (6.3, 1.4), "")
+    arrow((3.7, 1.4), (3.0, 1.6), "$\\sigma(t)$", off=(0, 0.2))
+    arrow((1.7, 2.2), (3.6, 3.5), "$u = K_{\\sigma(t)} x$", off=(-0.6, 0.1))
+    return ax

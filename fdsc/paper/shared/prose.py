@@ -1,0 +1,241 @@
+"""Numbers for the book's prose: one formatter, and one call that glues a result's numbers.
+
+Every number a chapter quotes is formatted here, so that the book prints numbers one way:
+significant digits are kept (``num(7.0)`` is ``7.00``, not ``7``), counts get thousands
+separators, very large or small magnitudes a power of ten, a factor reads ``×1.00`` and a range
+whose ends print alike prints once. A chapter's result says which of its numbers the prose
+quotes (a ``prose()`` method returning ``{name: text}``) and :func:`glue_numbers` glues them in
+one call, so that the cells that only glue stay short and hidden.
+"""
+
+import math
+from numbers import Integral, Real
+
+import numpy as np
+
+__all__ = ["num", "count", "times", "span", "pct", "matrix_text", "glue_numbers"]
+
+_SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+def _real(x, name):
+    if isinstance(x, bool | np.bool_) or not isinstance(x, Real):
+        raise TypeError(f"{name} must be a real number, but found {type(x).__name__} {x!r}")
+    return float(x)
+
+
+def num(x, digits=3):
+    """A number with ``digits`` significant digits, trailing zeros kept.
+
+    Parameters
+    ----------
+    x : float or int
+        Integers (Python or NumPy) print in full with thousands separators (:func:`count`).
+    digits : int, optional
+        Significant digits of a float (≥ 1).
+
+    Returns
+    -------
+    str
+        ``∞``/``−∞`` and ``n/a`` (NaN) for non-finite values; magnitudes ≥ 10⁵ or below 10⁻³ as
+        ``m × 10ᵉ``; magnitudes with more integer digits than ``digits`` as a whole number with
+        thousands separators; minus signs as U+2212.
+
+    Raises
+    ------
+    TypeError
+        If ``x`` is not a real number.
+    ValueError
+        If ``digits`` < 1.
+
+    Examples
+    --------
+    >>> num(7.0), num(0.43593), num(22.534), num(118.82), num(1.149e7), num(37493)
+    ('7.00', '0.436', '22.5', '119', '1.15 × 10⁷', '37,493')
+    >>> num(-0.0128), num(2.7e-26, 2), num(float("inf")), num(1092.79), num(999.7)
+    ('−0.0128', '2.7 × 10⁻²⁶', '∞', '1,093', '1,000')
+    >>> num(1072.4, 4), num(1234.5678, 6)
+    ('1,072', '1,234.57')
+    """
+    if isinstance(x, Integral) and not isinstance(x, bool | np.bool_):
+        return count(x)
+    v = _real(x, "x")
+    if digits < 1:
+        raise ValueError(f"digits must be at least 1, but found {digits!r}")
+    if math.isnan(v):
+        return "n/a"
+    if math.isinf(v):
+        return "∞" if v > 0 else "−∞"
+    if v != 0 and (abs(v) >= 1e5 or abs(v) < 1e-3):
+        mantissa, exponent = f"{v:.{digits - 1}e}".split("e")
+        return f"{mantissa} × 10{str(int(exponent)).translate(_SUPERSCRIPT)}".replace("-", "−")
+    if abs(v) >= 10 ** digits - 0.5:   # more integer digits than asked: the whole number
+        return count(round(v)) if abs(round(v)) < 100_000 else num(float(round(v)), digits)
+    text = f"{v:#.{digits}g}"
+    if abs(v) >= 1000:       # thousands separators, as count() prints whole numbers
+        text = f"{v:,.{len(text.partition('.')[2])}f}"
+    return text.rstrip(".").replace("-", "−")
+
+
+def count(n):
+    """A whole number with thousands separators.
+
+    Parameters
+    ----------
+    n : int
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    TypeError
+        If ``n`` is not an integer (bools are refused).
+
+    Examples
+    --------
+    >>> count(37493), count(0), count(-1200)
+    ('37,493', '0', '−1,200')
+    """
+    if isinstance(n, bool | np.bool_) or not isinstance(n, Integral):
+        raise TypeError(f"n must be an integer, but found {type(n).__name__} {n!r}")
+    return f"{int(n):,}".replace("-", "−")
+
+
+def times(x, digits=3):
+    """A factor: ``×`` and :func:`num` (``times(1.0)`` is ``×1.00``).
+
+    Parameters
+    ----------
+    x : float
+    digits : int, optional
+        Significant digits.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    TypeError
+        If ``x`` is not a real number.
+
+    Examples
+    --------
+    >>> times(1.0), times(0.742), times(22.53)
+    ('×1.00', '×0.742', '×22.5')
+    """
+    return "×" + num(float(_real(x, "x")), digits)
+
+
+def span(lo, hi, digits=3, *, sep="–", fmt=num):
+    """A range that prints once when its ends print alike.
+
+    Parameters
+    ----------
+    lo, hi : float
+    digits : int, optional
+    sep : str, optional
+        Between the two ends.
+    fmt : callable, optional
+        ``fmt(x, digits)`` formats each end (:func:`num` or :func:`times`).
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> span(1.3601, 1.3649), span(0.436, 7.0), span(0.436, 7.0, fmt=times)
+    ('1.36', '0.436–7.00', '×0.436–×7.00')
+    """
+    a, b = fmt(lo, digits), fmt(hi, digits)
+    return a if a == b else f"{a}{sep}{b}"
+
+
+def pct(share, digits=0):
+    """A share in [0, 1] as a percentage (``pct(0.04)`` is ``4 %``).
+
+    Parameters
+    ----------
+    share : float
+    digits : int, optional
+        Decimals of the percentage.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    ValueError
+        If the share is outside [0, 1] or not finite.
+
+    Examples
+    --------
+    >>> pct(0.0), pct(0.9), pct(0.123, 1)
+    ('0 %', '90 %', '12.3 %')
+    """
+    v = _real(share, "share")
+    if not 0.0 <= v <= 1.0:
+        raise ValueError(f"share must lie in [0, 1], but found {v!r}")
+    return f"{100 * v:.{digits}f} %"
+
+
+def matrix_text(m, digits=4):
+    """A small matrix as the book prints it: rows separated by semicolons, entries by
+    :func:`fdsc.paper.shared.prose.num` (no raw NumPy array in the book).
+
+    Parameters
+    ----------
+    m : (n, k) array_like
+    digits : int, optional
+        Significant digits of each entry.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> matrix_text([[1.0, -2.5e-11], [-2.5e-11, 0.5]])
+    '[1.000, −2.500 × 10⁻¹¹; −2.500 × 10⁻¹¹, 0.5000]'
+    """
+    return "[" + "; ".join(", ".join(num(float(v), digits) for v in row)
+                           for row in np.atleast_2d(np.asarray(m, dtype=float))) + "]"
+
+
+def glue_numbers(numbers, prefix=""):
+    """Glue every ``{name: value}`` for the prose (``{glue:text}`prefix+name```), not displayed.
+
+    Parameters
+    ----------
+    numbers : mapping of str to object
+        Usually a result's ``prose()``: formatted text, or any other object (e.g. ``Markdown``
+        for ``{glue:md}``). Text is glued as a ``str``: MyST-NB's ``{glue:text}`` reads back the
+        ``repr`` with ``ast.literal_eval``, which gives the text itself (an object whose ``repr``
+        were the bare text would be evaluated: ``37,493`` would print as ``(37, 493)`` and
+        ``1.00`` as ``1.0``).
+    prefix : str, optional
+        Put before every name (a chapter's results share one namespace per page).
+
+    Returns
+    -------
+    list of str
+        The glued names, in order.
+
+    Raises
+    ------
+    TypeError
+        If a name is not a string.
+    """
+    from myst_nb import glue  # only inside a notebook
+
+    names = []
+    for key, value in numbers.items():
+        if not isinstance(key, str):
+            raise TypeError(f"numbers must be keyed by str, but found {type(key).__name__} {key!r}")
+        glue(prefix + key, value, display=False)
+        names.append(prefix + key)
+    return names

@@ -1,0 +1,478 @@
+"""The exact engine of a law on the disturbance estimate: a :class:`~fdsc.supervisor.Supervisor`
+prepared for one disturbance (:class:`Prepared`: the monitors' energies per decision interval and
+the switched loops' step tables, from which any setting of the law, fixed candidates, segment
+laws and the clairvoyant per-segment oracle are evaluated exactly), and the switched run along a
+decided sequence at a given step (by :func:`fdsc.simulate_stream`).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+
+from . import _divergence
+from ._validation import as_nonnegative, as_positive, as_vector, check_type
+from .decisions import (
+    SupervisedRun,
+    _abcd,
+    _bank_starts,
+    _check_mu,
+    _decide,
+    _fading,
+    _input_energy,
+    _n_blocks,
+    _older_bank,
+    _schedule,
+)
+from .exceptions import DimensionError, EnergyOverflowError, UnstableRunWarning
+from .signals import Piecewise, Sinusoids
+
+__all__ = ["Prepared", "shift_signal", "STIFF_STEP"]
+
+#: A stepped run (``supervise(dt=...)``) warns when a loop's fastest mode λ has |λ| dt above this:
+#: the transients at the switches are then shorter than a step.
+STIFF_STEP = 0.5
+
+
+def shift_signal(d, tau: float):
+    """The signal ``t ↦ d(t + τ)``: tones with their phases advanced by ωτ, breaks moved by −τ.
+
+    Parameters
+    ----------
+    d : Sinusoids or Piecewise
+    tau : float
+        The shift in s.
+
+    Returns
+    -------
+    Sinusoids or Piecewise
+
+    Raises
+    ------
+    TypeError
+        If ``d`` is neither.
+    ValueError
+        If ``tau`` is not a finite real number.
+
+    Examples
+    --------
+    >>> d = Sinusoids([1.0], [2.0])
+    >>> bool(np.isclose(shift_signal(d, 0.5)([1.0])[0], d([1.5])[0], rtol=1e-14))
+    True
+    >>> p = Piecewise([0.0, 1.0, 3.0], [d, Sinusoids([1.0], [5.0])])
+    >>> np.allclose(shift_signal(p, 0.5)([0.2, 0.7, 2.0]), p([0.7, 1.2, 2.5]), rtol=1e-14)
+    True
+    """
+    if isinstance(tau, bool) or not isinstance(tau, int | float | np.integer | np.floating) \
+            or not math.isfinite(tau):
+        raise ValueError(f"tau must be a finite real number of seconds, but found {tau!r}")
+    tau = float(tau)
+    if isinstance(d, Sinusoids):
+        return Sinusoids(d.amplitudes, d.frequencies, d.phases + d.frequencies * tau)
+    if isinstance(d, Piecewise):
+        # the parts are evaluated at absolute time: each is shifted too
+        return Piecewise(np.asarray(d.breaks) - tau, [shift_signal(p, tau) for p in d.parts])
+    raise TypeError(f"d must be an fdsc.Sinusoids or fdsc.Piecewise, but found {type(d).__name__}")
+
+
+class Prepared:
+    """A :class:`Supervisor` prepared for one disturbance (see :meth:`Supervisor.prepare`).
+
+    Everything here is exact (:mod:`fdsc._blocks`): the monitors' energies over each decision
+    interval and every run's energy are integrals of the exact solution, not quadratures, so the
+    law's decisions do not depend on any simulation step.
+
+    Parameters
+    ----------
+    sup : Supervisor
+    d : Sinusoids or Piecewise
+    horizon : float
+        A whole number of decision intervals (s).
+    x0 : (n,) array_like or None
+        Initial state of the plant.
+    estimate : Sinusoids or Piecewise or None, optional
+        What the monitors are driven by (default ``d``; see :meth:`Supervisor.prepare`).
+
+    Raises
+    ------
+    TypeError
+        If ``d`` is not Sinusoids or Piecewise.
+    ValueError
+        If ``horizon`` is not a whole number of decision intervals or ``x0`` has the wrong size.
+    """
+
+    def __init__(self, sup, d, horizon, x0, estimate=None):
+        from ._blocks import Grid
+
+        check_type("d", d, Sinusoids | Piecewise, "an fdsc.Sinusoids or fdsc.Piecewise")
+        horizon = as_positive("horizon", horizon)
+        nb = _n_blocks(horizon, sup.decide_every)
+        n = sup.plant.n_states
+        self.sup, self.d, self.horizon, self.n_blocks = sup, d, float(horizon), nb
+        self.x0 = np.zeros(n) if x0 is None else np.array(as_vector("x0", x0, n))
+        self.points = np.arange(nb + 1) * sup.decide_every
+        self.points[-1] = horizon
+        g = self.grid = Grid(d, self.points)
+        if estimate is not None:
+            check_type("estimate", estimate, Sinusoids | Piecewise, "an fdsc.Sinusoids or fdsc.Piecewise")
+        gm = g if estimate is None else Grid(estimate, self.points)
+        # the monitors' energies per decision interval, for each bank of restarts
+        self.starts = _bank_starts(nb, sup.restart_blocks)
+        self.E = np.zeros((2, nb, len(sup.monitors)))
+        if sup.law == "cost":                    # the monitors are the closed loops: one table
+            shared = gm.tables([_abcd(m) for m in sup.monitors])
+            tables = [(shared, i) for i in range(len(sup.monitors))]
+        else:
+            tables = [(gm.tables([_abcd(m)]), 0) for m in sup.monitors]
+        for b, st in enumerate(self.starts):
+            at = np.zeros(nb + 1, dtype=bool)
+            at[st] = True
+            restart = at[gm.block] & np.r_[True, gm.block[1:] != gm.block[:-1]]
+            for i, (m, (tab, j)) in enumerate(zip(sup.monitors, tables, strict=True)):
+                e, _big, _x = gm.run(tab, j, restart, np.zeros(m.A.shape[0]))
+                self.E[b, :, i] = gm.per_block(e)
+        if not np.all(np.isfinite(self.E)):
+            raise EnergyOverflowError("prepare: a monitor's energy is not finite (a candidate's "
+                                      "loop, or the disturbance's scale, is beyond what floats "
+                                      "integrate: its energy exceeds about 1e308)")
+        self.input_energy = _input_energy(g)
+        self.loops = sup.switched_loops()
+        if sup.law == "cost" and sup.K0 is None and estimate is None:
+            self.tables = shared
+        else:
+            self.tables = g.tables([_abcd(lp) for lp in self.loops])
+        self.xstart = self.x0 if sup.K0 is None else np.tile(self.x0, len(sup.gains) + 1)
+
+    def with_K0(self, K0) -> Prepared:
+        """The same disturbance and monitors with another realization (only the switched loops'
+        tables are recomputed).
+
+        Parameters
+        ----------
+        K0 : (m_u, n) array_like or None
+            None: direct; a stabilizing gain: through copies.
+
+        Returns
+        -------
+        Prepared
+        """
+        cls = type(self.sup)
+        sup = cls.__new__(cls)
+        sup.__dict__.update(self.sup.__dict__)
+        other = cls(self.sup.plant, self.sup.gains, K0=K0)
+        sup.K0 = other.K0
+        new = Prepared.__new__(Prepared)
+        new.__dict__.update(self.__dict__)
+        new.sup = sup
+        new.loops = sup.switched_loops()
+        new.tables = self.grid.tables([_abcd(lp) for lp in new.loops])
+        new.xstart = new.x0 if sup.K0 is None else np.tile(new.x0, len(sup.gains) + 1)
+        return new
+
+    def mu(self, forgetting: float) -> np.ndarray:
+        """The monitoring signals the law reads at the decision points: at each point those of
+        the bank whose monitors are older (μ = 0 where it has just restarted).
+
+        Parameters
+        ----------
+        forgetting : float
+            λ > 0 (1/s).
+
+        Returns
+        -------
+        (n_blocks + 1, I) ndarray
+        """
+        lam = as_positive("forgetting", forgetting)
+        decay = math.exp(-lam * self.sup.decide_every)
+        nb = self.n_blocks
+        out = []
+        for b, st in enumerate(self.starts):
+            fresh = np.zeros(nb + 1, dtype=np.bool_)
+            fresh[st] = True
+            out.append(_fading(self.E[b], fresh, decay))
+        return np.where((_older_bank(self.starts, nb) == 0)[:, None], out[0], out[1])
+
+    def decide(self, mu, *, hysteresis: float = 0.2, warmup: float = 0.0, min_dwell: float = 0.0,
+               sigma0: int = 0) -> np.ndarray:
+        """The candidate active on each decision interval.
+
+        Parameters
+        ----------
+        mu : (n_blocks + 1, I) ndarray
+            The monitoring signals (:meth:`mu`).
+        hysteresis, warmup, min_dwell, sigma0
+            See :meth:`run`.
+
+        Returns
+        -------
+        (n_blocks,) int ndarray
+        """
+        h = as_nonnegative("hysteresis", hysteresis)
+        nm = len(self.sup.gains)
+        mu = np.asarray(mu)
+        if mu.shape != (self.n_blocks + 1, nm) or not np.issubdtype(mu.dtype, np.floating):
+            raise ValueError(f"mu must be a float array of shape {(self.n_blocks + 1, nm)} (one row "
+                             f"per decision point, one column per candidate), but found "
+                             f"{mu.dtype} of shape {mu.shape}")
+        if not np.all(np.isfinite(mu)) or np.any(mu < 0):
+            raise ValueError("mu must hold finite, non-negative monitoring signals")
+        first, dwell = _schedule(self.n_blocks, self.sup.decide_every, warmup, min_dwell, sigma0, nm)
+        # the cost law compares μ (least wins); the band-power law compares 1/μ (largest μ wins)
+        with np.errstate(divide="ignore"):
+            cost = mu if self.sup.law == "cost" else 1.0 / mu
+        return _decide(np.ascontiguousarray(cost), self.n_blocks, int(sigma0), first, dwell, h)
+
+    def run_sequence(self, sigma, *, where: str = "supervise") -> SupervisedRun:
+        """The switched loop run exactly along a given sequence.
+
+        Parameters
+        ----------
+        sigma : (n_blocks,) array_like of int
+            One candidate per decision interval.
+        where : str, optional
+            Prefix of the divergence monitor's warning.
+
+        Returns
+        -------
+        SupervisedRun
+            Without monitoring signals.
+
+        Raises
+        ------
+        ValueError
+            If ``sigma`` has the wrong shape or names no candidate.
+
+        Warns
+        -----
+        UnstableRunWarning
+            If the state at a switch or at the end exceeds the divergence monitor's bound.
+        """
+        g = self.grid
+        sigma = np.asarray(sigma)
+        if sigma.shape != (self.n_blocks,) or not np.issubdtype(sigma.dtype, np.integer):
+            raise ValueError(f"sigma must be an integer array of one candidate index per decision "
+                             f"interval ({self.n_blocks}), but found {sigma.dtype} of shape "
+                             f"{sigma.shape}")
+        if sigma.min() < 0 or sigma.max() >= len(self.loops):
+            raise ValueError(f"sigma must hold candidate indices in [0, {len(self.loops)}), but "
+                             f"found {int(sigma.min())} to {int(sigma.max())}")
+        sigma = sigma.astype(np.int64)
+        e, big, x = g.run(self.tables, sigma[g.block], False, self.xstart)
+        change = np.flatnonzero(np.diff(sigma)) + 1
+        # the divergence monitor's rule (fdsc._divergence) at the switches and at the end
+        limit = _divergence.threshold([lp.A for lp in self.loops], self.loops[0].B, self.xstart, self.d)
+        ends = np.r_[np.searchsorted(g.block, change) - 1, e.size - 1]
+        ends = ends[ends >= 0]
+        over = np.flatnonzero(big[ends] > limit)
+        if not over.size and np.all(np.isfinite(big)) and not np.all(np.isfinite(e)):
+            raise EnergyOverflowError(f"{where}: the state stays finite but the energy exceeds the "
+                                      "float range (about 1.8e308): scale the disturbance down")
+        diverged = None
+        if over.size or not np.all(np.isfinite(e)):
+            s = int(ends[over[0]]) if over.size else int(np.flatnonzero(~np.isfinite(e))[0])
+            diverged = float(g.edges[s + 1])
+            bound = limit / _divergence.SAFETY
+            warnings.warn(_divergence.message(f"{where}: ", diverged, float(big[s]) / bound, bound),
+                          UnstableRunWarning, stacklevel=3)
+        seq = np.r_[sigma[:1], sigma[change]]
+        share = np.bincount(sigma, minlength=len(self.loops)) / sigma.size
+        return SupervisedRun(self.horizon, None, float(e.sum()), self.input_energy,
+                             change * self.sup.decide_every, seq, share,
+                             x[:self.sup.plant.n_states], self.points, np.zeros((0, len(self.loops))),
+                             diverged)
+
+    def run(self, *, forgetting: float = 0.5, hysteresis: float = 0.2, warmup: float = 0.0,
+            min_dwell: float = 0.0, sigma0: int = 0) -> SupervisedRun:
+        """Run the law.
+
+        Parameters
+        ----------
+        forgetting : float, optional
+            λ > 0 (1/s), the monitoring signals' rate of forgetting.
+        hysteresis : float, optional
+            h ≥ 0: switch from q to p when ``(1 + h) μ_p < μ_q`` (cost law) or
+            ``μ_p > (1 + h) μ_q`` (band-power law); strict, so equal signals (monitors at rest)
+            keep the active candidate. Relative, so the law does not depend on ŵ's scale.
+        warmup : float, optional
+            No decision before this time (s; ``sigma0`` is active until then).
+        min_dwell : float, optional
+            No switch within this time (s) of the previous one: the dwell time a certificate
+            (:func:`fdsc.geromel_colaneri_dwell`) asks of the direct realization.
+        sigma0 : int, optional
+            The candidate active at t = 0.
+
+        Returns
+        -------
+        SupervisedRun
+        """
+        mu = self.mu(forgetting)
+        _check_mu(mu, "run")
+        sigma = self.decide(mu, hysteresis=hysteresis, warmup=warmup, min_dwell=min_dwell, sigma0=sigma0)
+        r = self.run_sequence(sigma)
+        return SupervisedRun(r.horizon, r.dt, r.energy, r.input_energy, r.switch_times, r.sequence,
+                             r.time_share, r.x_final, self.points, mu, r.diverged_at)
+
+    def fixed(self, i: int) -> float:
+        """∫zᵀz of one candidate held throughout, from x0 (by the same exact engine).
+
+        Parameters
+        ----------
+        i : int
+            The candidate.
+
+        Returns
+        -------
+        float
+        """
+        return self.run_sequence(np.full(self.n_blocks, self._index("i", i))).energy
+
+    def _index(self, name, i):
+        nm = len(self.loops)
+        if isinstance(i, bool) or not isinstance(i, int | np.integer) or not 0 <= i < nm:
+            raise ValueError(f"{name} must be a candidate's index in [0, {nm}), but found {i!r}")
+        return int(i)
+
+    def energy_of(self, loop) -> float:
+        """∫zᵀz of any other loop from x0, by the same exact engine.
+
+        Parameters
+        ----------
+        loop : LTISystem
+            Of the plant's state size (e.g. the closed loop of a gain that is not a candidate).
+
+        Returns
+        -------
+        float
+
+        Raises
+        ------
+        TypeError, DimensionError, ValueError
+            If ``loop`` is not an LTISystem of the plant's size with one input, or not stable.
+        """
+        from .plant import LTISystem
+
+        check_type("loop", loop, LTISystem, "an fdsc.LTISystem")
+        n = self.x0.size
+        if loop.A.shape != (n, n) or loop.B.shape[1] != 1:
+            raise DimensionError(f"loop must have the plant's {n} states and one input, but found "
+                                 f"A {loop.A.shape} and B {loop.B.shape}")
+        worst = float(np.max(np.linalg.eigvals(loop.A).real))
+        if worst >= 0:
+            raise ValueError(f"loop must be stable, but A has an eigenvalue with real part {worst:.4g}")
+        g = self.grid
+        e = float(g.run(g.tables([_abcd(loop)]), 0, False, self.x0)[0].sum())
+        if not math.isfinite(e):
+            raise EnergyOverflowError("energy_of: the energy exceeds the float range (about 1.8e308)")
+        return e
+
+    def piece_steps(self) -> list:
+        """The steps of every piece of d (zero stretches included).
+
+        Returns
+        -------
+        list of (int, int)
+            ``(first step, end step)`` per piece.
+        """
+        g = self.grid
+        cut = np.r_[0, np.flatnonzero(np.diff(g.piece)) + 1, g.piece.size]
+        return list(zip(cut[:-1], cut[1:], strict=True))
+
+    def segment_law(self, choice) -> float:
+        """∫zᵀz of a law that holds one candidate per piece of d, the state carried over.
+
+        Parameters
+        ----------
+        choice : sequence of int
+            The candidate on each piece of :meth:`piece_steps`.
+
+        Returns
+        -------
+        float
+
+        Raises
+        ------
+        ValueError
+            If ``choice`` does not name one candidate per piece.
+        """
+        g, x, total = self.grid, self.xstart.copy(), 0.0
+        spans = self.piece_steps()
+        if isinstance(choice, str) or not hasattr(choice, "__len__"):
+            raise TypeError(f"choice must be a sequence of candidate indices, but found {choice!r}")
+        if len(choice) != len(spans):
+            raise ValueError(f"choice must name one candidate per piece ({len(spans)}), but found "
+                             f"{len(choice)}")
+        choice = [self._index(f"choice[{k}]", c) for k, c in enumerate(choice)]
+        for (a, b), c in zip(spans, choice, strict=True):
+            e, _big, x = g.run(self.tables, c, False, x, a, b)
+            total += float(e.sum())
+        return total
+
+    def clairvoyant(self) -> tuple:
+        """The clairvoyant per-segment oracle: on each piece of d the candidate with the least
+        energy on that piece from the carried-over state.
+
+        Returns
+        -------
+        energy : float
+        choice : list of int
+            The candidate on each piece.
+        """
+        g, x, total, choice = self.grid, self.xstart.copy(), 0.0, []
+        for a, b in self.piece_steps():
+            best = None
+            for i in range(len(self.loops)):
+                e, _big, xi = g.run(self.tables, i, False, x, a, b)
+                if best is None or e.sum() < best[0]:
+                    best = (float(e.sum()), i, xi)
+            total += best[0]
+            choice.append(best[1])
+            x = best[2]
+        return total, choice
+
+
+def _run_on_grid(prep, sigma, mu, dt):
+    """The switched run along ``sigma`` (one candidate per decision interval) by
+    :func:`fdsc.simulate_stream` at step dt."""
+    from .stream import simulate_stream
+
+    sup = prep.sup
+    change = np.flatnonzero(np.diff(sigma)) + 1
+    switch_times = change * sup.decide_every
+    sequence = np.r_[sigma[:1], sigma[change]]
+    block = round(sup.decide_every / dt)
+    # the modes a switch excites: those of the loop switched to (direct); through copies only the
+    # plant's own loop A + B2 K0 (the copies run on ŵ whatever σ does)
+    if sup.K0 is None:
+        excited = [prep.loops[int(m)].A for m in set(sequence[1:].tolist())]
+    else:
+        excited = [sup.plant.A + sup.plant.B2 @ sup.K0] if change.size else []
+    fastest = max([float(np.abs(np.linalg.eigvals(M)).max()) for M in excited] + [0.0])
+    if fastest * dt > STIFF_STEP:
+        warnings.warn(f"supervise: a loop the law switches to has a mode at {fastest:.3g} /s, so "
+                      f"|λ| dt = {fastest * dt:.3g} > {STIFF_STEP:g}: the transient that follows the switch "
+                      "is shorter than a step, and Simpson's rule on the grid misses its energy; run it "
+                      "exactly (dt=None)", RuntimeWarning, stacklevel=3)
+    N = prep.n_blocks * block + 1
+    bounds = [0, *(change * block).tolist(), N - 1]
+    x = prep.xstart.copy()
+    limit = _divergence.threshold([lp.A for lp in prep.loops], prep.loops[0].B, x, prep.d)
+    energy = input_energy = 0.0
+    diverged = None
+    for a, b, m in zip(bounds[:-1], bounds[1:], sequence, strict=True):
+        if b <= a:
+            continue
+        r = simulate_stream(prep.loops[int(m)], shift_signal(prep.d, a * dt), (b - a) * dt, dt, x0=x)
+        energy += r.energy
+        input_energy += r.input_energy
+        x = r.x_final
+        big = float(np.abs(x).max())
+        if big > limit and diverged is None:
+            bound = limit / _divergence.SAFETY
+            diverged = b * dt
+            warnings.warn(_divergence.message("supervise: ", b * dt, big / bound, bound),
+                          UnstableRunWarning, stacklevel=3)
+    share = np.bincount(sigma, minlength=len(prep.loops)) / sigma.size
+    return SupervisedRun(prep.horizon, float(dt), float(energy), float(input_energy), switch_times,
+                         sequence, share, x[:sup.plant.n_states], prep.points, mu, diverged)
