@@ -23,6 +23,10 @@ from typing import TYPE_CHECKING
 #: NumPy only; ``fdsc.simulate_stream`` loads SciPy and numba, ``fdsc.synthesize`` CVXPY).
 _EXPORTS = {
     "bands": ("PHI", "Band", "band_from_spec"),
+    "controller": ("Controller", "as_controller", "switched_loops"),
+    "weighted": ("WeightedDesign", "DynamicFront", "band_weight", "weighted_hinf", "dynamic_front"),
+    "h2": ("shaping_filter", "fit_shaping_filter", "h2_controller"),
+    "tuning": ("TuneResult", "loop_energy", "tune_controller"),
     "design": ("FDSC",),
     "dwell": ("DwellCheck", "DwellTimeBound", "LyapunovDwell", "PeriodicDwellMargin",
               "check_dwell_bound", "dwell_time_bound", "lyapunov_dwell", "periodic_dwell_margin",
@@ -35,7 +39,8 @@ _EXPORTS = {
     "frequency": ("BandPeak", "band_peak", "freqresp", "sigma_max", "steady_state_gain", "steady_state_gains",
                   "steady_state_gains"),
     "lmi": ("GKYPResult", "gkyp_certify", "gkyp_gamma"),
-    "multiband": ("FrontPoint", "MultibandResult", "ParetoFront", "pareto_front", "synthesize_multiband"),
+    "multiband": ("FrontPoint", "MultibandResult", "ParetoFront", "dominating_gain", "pareto_front",
+                  "synthesize_multiband"),
     "lyapunov_jumps": ("SwitchingCertificate", "certify_switching", "certify_switching_gain",
                        "switching_forms"),
     "plant": ("LTISystem", "Plant", "as_plant", "as_system"),
@@ -95,6 +100,7 @@ sys.modules[__name__].__class__ = _Package
 
 if TYPE_CHECKING:  # what the lazy names are, for type checkers and editors
     from .bands import PHI, Band, band_from_spec
+    from .controller import Controller, as_controller, switched_loops
     from .decisions import SupervisedRun
     from .design import FDSC
     from .dwell import (
@@ -134,6 +140,7 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers and editors
     )
     from .frequency import BandPeak, band_peak, freqresp, sigma_max, steady_state_gain, steady_state_gains
     from .gc_dwell import DwellCertificate, geromel_colaneri_dwell
+    from .h2 import fit_shaping_filter, h2_controller, shaping_filter
     from .lmi import GKYPResult, gkyp_certify, gkyp_gamma
     from .lyapunov_jumps import (
         SwitchingCertificate,
@@ -142,7 +149,14 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers and editors
         switching_forms,
     )
     from .min_switching import MinSwitchingCertificate, min_switching
-    from .multiband import FrontPoint, MultibandResult, ParetoFront, pareto_front, synthesize_multiband
+    from .multiband import (
+        FrontPoint,
+        MultibandResult,
+        ParetoFront,
+        dominating_gain,
+        pareto_front,
+        synthesize_multiband,
+    )
     from .plant import LTISystem, Plant, as_plant, as_system
     from .prepared import Prepared, shift_signal
     from .random_systems import random_hurwitz, random_plant, random_spd, random_system
@@ -164,20 +178,27 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers and editors
     from .switching import Theorem1Result, certify_q, design_q
     from .synthesis import SynthesisResult, optimize_gain, synthesize, synthesize_hinf
     from .three_mode import ScoreCertificate, certify_scores, design_scores
+    from .tuning import TuneResult, loop_energy, tune_controller
+    from .weighted import DynamicFront, WeightedDesign, band_weight, dynamic_front, weighted_hinf
 
 __version__ = "0.2.0"
 
 __all__ = [
     # frequency ranges
     "PHI", "Band", "band_from_spec",
-    # systems
-    "LTISystem", "Plant", "as_system", "as_plant",
+    # systems and controllers
+    "LTISystem", "Plant", "as_system", "as_plant", "Controller", "as_controller", "switched_loops",
     # frequency responses and Lemma 1
     "BandPeak", "band_peak", "freqresp", "sigma_max", "steady_state_gain", "steady_state_gains",
     "GKYPResult", "gkyp_gamma", "gkyp_certify",
     # synthesis
     "SynthesisResult", "synthesize", "synthesize_hinf", "optimize_gain",
     "MultibandResult", "synthesize_multiband", "FrontPoint", "ParetoFront", "pareto_front",
+    "dominating_gain",
+    # fixed controllers for a disturbance class: weighted H∞, H2 for a spectrum, tuned on draws
+    "WeightedDesign", "DynamicFront", "band_weight", "weighted_hinf", "dynamic_front",
+    "shaping_filter", "fit_shaping_filter", "h2_controller", "TuneResult", "loop_energy",
+    "tune_controller",
     # a switching law on the disturbance estimate
     "Supervisor", "Prepared", "SupervisedRun", "supervise", "LAWS", "band_filter", "lqr_gain",
     "shift_signal", "DwellCertificate", "geromel_colaneri_dwell", "MinSwitchingCertificate",

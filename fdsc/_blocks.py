@@ -63,21 +63,30 @@ def pieces(d, horizon: float) -> list:
     return out
 
 
-def _pair(A, B, C, D, w, h):
+def _pair(A, B, C, D, w, h, ch=None):
     """``([Φ, M], Q)`` of one step of length h for unit amplitudes (module docstring), padded by
-    the caller."""
+    the caller. ``ch`` (one entry per tone) is the input column each tone drives, for a system
+    with two inputs ``[d; ŵ]`` on a grid of two signals; a system with one input is driven by
+    the tones of channel 0 (d) only."""
     n, T = A.shape[0], w.size
     W = n + 2 * T
     F = np.zeros((W, W))
     F[:n, :n] = A
+    if ch is None:
+        Bt, Dt = B @ np.ones((1, T)), D @ np.ones((1, T))
+    elif B.shape[1] == 1:
+        on = (np.asarray(ch) == 0).astype(float)[None, :]
+        Bt, Dt = B @ on, D @ on
+    else:
+        Bt, Dt = B[:, ch], D[:, ch]
     if T:
-        F[:n, n + T:] = B @ np.ones((1, T))
+        F[:n, n + T:] = Bt
         F[n:n + T, n + T:] = -np.diag(w)
         F[n + T:, n:n + T] = np.diag(w)
     G = np.zeros((C.shape[0], W))
     G[:, :n] = C
     if T:
-        G[:, n + T:] = D @ np.ones((1, T))
+        G[:, n + T:] = Dt
     GtG = G.T @ G
     norm = float(np.abs(F).sum(axis=0).max()) * h
     k = max(0, math.ceil(math.log2(norm))) if norm > 1 else 0
@@ -96,19 +105,40 @@ def _pair(A, B, C, D, w, h):
     return Phi[:n], Q
 
 
+def _merged(d, estimate, horizon):
+    """The pieces of two signals on their common breaks, and the channel of each tone (0: d,
+    1: the estimate)."""
+    a, b = pieces(d, horizon), pieces(estimate, horizon)
+    cuts = np.union1d([p[0] for p in a] + [horizon], [p[0] for p in b])
+    keep = np.concatenate([[True], np.diff(cuts) > 1e-9 * max(1.0, horizon)])
+    cuts = cuts[keep]
+    out, channels = [], []
+    for t0, t1 in zip(cuts[:-1], cuts[1:], strict=True):
+        mid = 0.5 * (t0 + t1)
+        pa = next(p for p in a if p[0] <= mid < p[1] or p is a[-1])
+        pb = next(p for p in b if p[0] <= mid < p[1] or p is b[-1])
+        out.append((float(t0), float(t1), np.r_[pa[2], pb[2]], np.r_[pa[3], pb[3]], np.r_[pa[4], pb[4]]))
+        channels.append(np.r_[np.zeros(pa[2].size, dtype=np.int64), np.ones(pb[2].size, dtype=np.int64)])
+    return out, channels
+
+
 class Grid:
     """The steps between the instants ``points`` (sorted, from 0 to the horizon) and the breaks
-    of ``d``, with the tones' oscillator state at the start of each step.
+    of ``d`` (and of ``estimate``), with the tones' oscillator state at the start of each step.
 
     Attributes: ``edges`` (S + 1,), ``block`` (S,) the index of the interval of ``points`` that
     holds each step, ``kind`` (S,) the index of its (piece, length) class, ``cs`` (S, 2T) the
-    oscillators ``[cos; sin]`` at its start (padded with zeros to the most tones T of a piece).
+    oscillators ``[cos; sin]`` at its start (padded with zeros to the most tones T of a piece),
+    ``channels`` (None, or per piece the input each tone drives: 0 for d, 1 for the estimate).
     """
 
-    def __init__(self, d, points: np.ndarray):
+    def __init__(self, d, points: np.ndarray, estimate=None):
         points = np.asarray(points, dtype=float)
         horizon = float(points[-1])
-        self.pieces = pieces(d, horizon)
+        if estimate is None:
+            self.pieces, self.channels = pieces(d, horizon), None
+        else:
+            self.pieces, self.channels = _merged(d, estimate, horizon)
         inner = [p[0] for p in self.pieces[1:]]
         edges = np.union1d(points, inner)
         # merge instants closer than a rounding error (a break on a decision point)
@@ -149,9 +179,13 @@ class Grid:
         for k, (pc, h) in enumerate(self.kinds):
             _t0, _t1, w, _a, _ph = self.pieces[pc]
             T = w.size
+            ch = None if self.channels is None else self.channels[pc]
             idx = np.r_[np.arange(n), n + np.arange(T), n + self.T + np.arange(T)]
             for i, (A, B, C, D) in enumerate(systems):
-                P, q = _pair(A, B, C, D, w, h)
+                if ch is None and B.shape[1] != 1:
+                    raise ValueError(f"a system with {B.shape[1]} inputs needs a grid of as many "
+                                     "signals (an estimate beside d)")
+                P, q = _pair(A, B, C, D, w, h, ch)
                 PHI[k, i][:, idx] = P
                 Q[k, i][np.ix_(idx, idx)] = q
         return PHI, Q

@@ -140,6 +140,12 @@ def run_measured(sup, d, horizon, dt, *, derivative, true_A, x0, forgetting, hys
         raise MemoryLimitError(f"run_measured: {nb} decision intervals need about {need / 2**30:.3g} GiB "
                                f"for the monitoring signals, over the limit of "
                                f"{DEFAULT_MAX_MEMORY / 2**30:.3g} GiB; shorten the horizon")
+    if any(c.reads_estimate for c in sup.candidates):
+        raise ValueError("run_measured: a candidate reads ŵ directly; on sampled measurements only "
+                         "candidates that read x (gains and controllers without E, F) are supported")
+    n_plant = n
+    if any(c.n_states for c in sup.candidates):
+        sup, A_t, x0 = _augmented(sup, A_t, x0)
     A_modes, B_modes = modes(sup, A_t)
     worst = max(float(np.max(np.linalg.eigvals(M).real)) for M in A_modes)
     if worst >= 0:
@@ -180,8 +186,47 @@ def run_measured(sup, d, horizon, dt, *, derivative, true_A, x0, forgetting, hys
     share = np.bincount(sigma, minlength=nm) / sigma.size
     input_energy = _input_energy(Grid(d, np.array([0.0, horizon])))
     return SupervisedRun(horizon, dt, float(e.sum()), input_energy,
-                         change * sup.decide_every, np.r_[sigma[:1], sigma[change]], share, x,
+                         change * sup.decide_every, np.r_[sigma[:1], sigma[change]], share, x[:n_plant],
                          points, mu, diverged)
+
+
+def _augmented(sup, A_true, x0):
+    """The supervisor with controllers that have states, seen as gains on the plant with every
+    controller's states (:func:`fdsc.switched_loops`): the plant ``[x; x_k,1; …]`` whose
+    controllers run on x, gains that pick the active one's output, K0 on x alone; the true
+    plant's A in its first block. ``(view, A_true, x0)`` for the run."""
+    from types import SimpleNamespace
+
+    from .plant import Plant
+
+    p, cs = sup.plant, sup.candidates
+    n, sizes = p.n_states, [c.n_states for c in cs]
+    N = n + sum(sizes)
+    offs = np.cumsum([n, *sizes])
+    A = np.zeros((N, N))
+    A[:n, :n] = p.A
+    gains = []
+    for c, o, k in zip(cs, offs[:-1], sizes, strict=True):
+        A[o:o + k, :n] = c.B
+        A[o:o + k, o:o + k] = c.A
+        K = np.zeros((p.n_controls, N))
+        K[:, :n] = c.D
+        K[:, o:o + k] = c.C
+        gains.append(K)
+    pad = np.zeros((N - n, 1))
+    plant = Plant(A, np.vstack([p.B1, pad]), np.vstack([p.B2, np.zeros((N - n, p.n_controls))]),
+                  np.hstack([p.C, np.zeros((p.C.shape[0], N - n))]), p.D1, p.D2)
+    K0 = None
+    if sup.K0 is not None:
+        K0 = np.zeros((p.n_controls, N))
+        K0[:, :n] = sup.K0
+    At = A.copy()
+    At[:n, :n] = A_true
+    view = SimpleNamespace(plant=plant, gains=gains, K0=K0, monitors=sup.monitors,
+                           loops=[plant.closed_loop(K) for K in gains], law=sup.law,
+                           decide_every=sup.decide_every, restart_blocks=sup.restart_blocks,
+                           candidates=cs)
+    return view, At, np.r_[x0, np.zeros(N - n)]
 
 
 def tables(sup, A_true, d, horizon, dt):

@@ -47,7 +47,8 @@ from .synthesis import (
     synthesize,
 )
 
-__all__ = ["MultibandResult", "FrontPoint", "ParetoFront", "synthesize_multiband", "pareto_front"]
+__all__ = ["MultibandResult", "FrontPoint", "ParetoFront", "synthesize_multiband", "pareto_front",
+           "dominating_gain"]
 
 
 @dataclass(frozen=True)
@@ -413,3 +414,79 @@ def pareto_front(plant: Plant, objective: Band, constrained: Band, betas, *, n_g
         lmi = np.array([_certified(plant.closed_loop(K), b) for b in (objective, constrained)])
         points.append(FrontPoint(float(beta), K, peak, lmi))
     return ParetoFront(objective, constrained, betas, tuple(points), ends, evals)
+
+
+def dominating_gain(plant: Plant, objective: Band, constrained: Band, peak, starts, *, n_grid: int = 300,
+                    maxiter: int = 2000, penalty: float = 1e3, tol: float = 1e-3):
+    """Search for a gain that beats a given pair of band peaks in both bands: the check of a
+    front point (or of a band design) against a direct search.
+
+    Minimizes the objective band's peak with the constrained band's at most ``peak[1]`` (as
+    :func:`pareto_front` does), by Nelder–Mead from each start, and keeps the best gain whose
+    refined sweeps meet ``peak[1]`` and beat ``peak[0]`` by more than ``tol`` (relative).
+
+    Parameters
+    ----------
+    plant : Plant
+    objective, constrained : Band
+    peak : (2,) array_like
+        ``[objective peak, constrained peak]`` to beat.
+    starts : sequence of (m_u, n) array_like
+        Where the search starts (e.g. every point of the front, other designs).
+    n_grid, maxiter, penalty : optional
+        As :func:`pareto_front`.
+    tol : float, optional
+        The least relative improvement of the objective peak that counts.
+
+    Returns
+    -------
+    (K, peaks) or None
+        The dominating gain and its peaks ``[objective, constrained]``, or None if the search
+        found none (which proves nothing: a local search).
+
+    Examples
+    --------
+    >>> from fdsc import random_plant, synthesize
+    >>> plant = random_plant(np.random.default_rng(3))
+    >>> lf, hf = Band.lf(1.0), Band.hf(10.0)
+    >>> K = synthesize(plant, hf).K
+    >>> cl = plant.closed_loop(2 * K)                     # a worse gain: something beats it
+    >>> found = dominating_gain(plant, hf, lf, [band_peak(cl, hf).gamma, band_peak(cl, lf).gamma],
+    ...                         [K], maxiter=300)
+    >>> found is not None
+    True
+    """
+    plant = _check(plant, objective)
+    check_type("constrained", constrained, Band)
+    peak = as_vector("peak", peak)
+    if peak.size != 2 or not np.all(np.isfinite(peak)) or np.any(peak <= 0):
+        raise ValueError(f"peak must be two positive finite peaks [objective, constrained], but found "
+                         f"{peak.tolist()}")
+    if not hasattr(starts, "__len__") or len(starts) == 0:
+        raise ValueError("starts must hold at least one gain")
+    starts = [np.asarray(s, dtype=float) for s in starts]
+    n_grid, maxiter = as_count("n_grid", n_grid, 2), as_count("maxiter", maxiter)
+    penalty, tol = as_positive("penalty", penalty), as_nonnegative("tol", tol)
+    w_obj, w_con = _objective_grid(objective, n_grid), _objective_grid(constrained, n_grid)
+    shape = starts[0].shape
+    scale = max(1.0, max(float(np.linalg.norm(s)) for s in starts))
+    target = peak[1] * (1.0 - BOUND_MARGIN)
+
+    def f(u):
+        pk = _peak_on_grid(plant, (scale * u).reshape(shape), w_obj, w_con)
+        if pk is None:
+            return 1e12
+        return pk[0] * (1.0 + penalty * max(0.0, pk[1] / target - 1.0))
+
+    best = None
+    for K0 in starts:
+        res = minimize(f, K0.ravel() / scale, method="Nelder-Mead",
+                       options={"xatol": 1e-8, "fatol": 1e-12, "maxiter": maxiter})
+        K = (scale * res.x).reshape(shape)
+        cl = plant.closed_loop(K)
+        if not cl.is_hurwitz():
+            continue
+        pk = np.array([band_peak(cl, objective).gamma, band_peak(cl, constrained).gamma])
+        if pk[1] <= peak[1] and pk[0] < peak[0] * (1.0 - tol) and (best is None or pk[0] < best[1][0]):
+            best = (K, pk)
+    return best

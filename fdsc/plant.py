@@ -194,8 +194,9 @@ class Plant:
 
         Parameters
         ----------
-        K : (m_u, n) array_like
-            State-feedback gain.
+        K : (m_u, n) array_like or Controller
+            State-feedback gain, or a controller with states (its closed loop has the state
+            ``[x; x_k]``: :meth:`fdsc.Controller.closed_loop`).
 
         Returns
         -------
@@ -221,6 +222,8 @@ class Plant:
         >>> cl.A.tolist(), cl.C.tolist()
         ([[-2.0]], [[1.0], [-3.0]])
         """
+        if callable(getattr(K, "closed_loop", None)):        # a Controller (fdsc.controller)
+            return K.closed_loop(self)
         K = as_matrix("K", K, (self.n_controls, self.n_states))
         return LTISystem(self.A + self.B2 @ K, self.B1, self.C + self.D2 @ K, self.D1)
 

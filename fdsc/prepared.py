@@ -93,7 +93,10 @@ class Prepared:
     x0 : (n,) array_like or None
         Initial state of the plant.
     estimate : Sinusoids or Piecewise or None, optional
-        What the monitors are driven by (default ``d``; see :meth:`Supervisor.prepare`).
+        The estimate ŵ the controller has (default ``d``; see :meth:`Supervisor.prepare`).
+    copies_on_estimate : bool, optional
+        Whether the copies and the candidates that read ŵ run on ``estimate`` (default) or on
+        ``d`` (see :meth:`Supervisor.prepare`).
 
     Raises
     ------
@@ -103,7 +106,7 @@ class Prepared:
         If ``horizon`` is not a whole number of decision intervals or ``x0`` has the wrong size.
     """
 
-    def __init__(self, sup, d, horizon, x0, estimate=None):
+    def __init__(self, sup, d, horizon, x0, estimate=None, *, copies_on_estimate: bool = True):
         from ._blocks import Grid
 
         check_type("d", d, Sinusoids | Piecewise, "an fdsc.Sinusoids or fdsc.Piecewise")
@@ -121,7 +124,9 @@ class Prepared:
         # the monitors' energies per decision interval, for each bank of restarts
         self.starts = _bank_starts(nb, sup.restart_blocks)
         self.E = np.zeros((2, nb, len(sup.monitors)))
-        if sup.law == "cost":                    # the monitors are the closed loops: one table
+        sizes = {m.A.shape[0] for m in sup.monitors}
+        shared = None
+        if sup.law == "cost" and len(sizes) == 1:   # the monitors are the closed loops: one table
             shared = gm.tables([_abcd(m) for m in sup.monitors])
             tables = [(shared, i) for i in range(len(sup.monitors))]
         else:
@@ -138,12 +143,18 @@ class Prepared:
                                       "loop, or the disturbance's scale, is beyond what floats "
                                       "integrate: its energy exceeds about 1e308)")
         self.input_energy = _input_energy(g)
-        self.loops = sup.switched_loops()
-        if sup.law == "cost" and sup.K0 is None and estimate is None:
+        # the controller as built: the copies (and whatever reads ŵ) run on the estimate
+        self.two_signals = estimate is not None and copies_on_estimate and sup.reads_estimate
+        if self.two_signals:
+            g = self.grid = Grid(d, self.points, estimate=estimate)
+        self.estimate, self.two_signals_asked = estimate, copies_on_estimate
+        self.loops = sup.switched_loops(estimate_input=self.two_signals)
+        static = all(c.is_static for c in sup.candidates)
+        if shared is not None and static and sup.K0 is None and estimate is None:
             self.tables = shared
         else:
             self.tables = g.tables([_abcd(lp) for lp in self.loops])
-        self.xstart = self.x0 if sup.K0 is None else np.tile(self.x0, len(sup.gains) + 1)
+        self.xstart = sup.start(self.x0)
 
     def with_K0(self, K0) -> Prepared:
         """The same disturbance and monitors with another realization (only the switched loops'
@@ -158,17 +169,22 @@ class Prepared:
         -------
         Prepared
         """
+        from ._blocks import Grid
+
         cls = type(self.sup)
         sup = cls.__new__(cls)
         sup.__dict__.update(self.sup.__dict__)
-        other = cls(self.sup.plant, self.sup.gains, K0=K0)
+        other = cls(self.sup.plant, self.sup.candidates, K0=K0)
         sup.K0 = other.K0
         new = Prepared.__new__(Prepared)
         new.__dict__.update(self.__dict__)
         new.sup = sup
-        new.loops = sup.switched_loops()
-        new.tables = self.grid.tables([_abcd(lp) for lp in new.loops])
-        new.xstart = new.x0 if sup.K0 is None else np.tile(new.x0, len(sup.gains) + 1)
+        new.two_signals = self.estimate is not None and self.two_signals_asked and sup.reads_estimate
+        if new.two_signals != self.two_signals:
+            new.grid = Grid(self.d, self.points, estimate=self.estimate if new.two_signals else None)
+        new.loops = sup.switched_loops(estimate_input=new.two_signals)
+        new.tables = new.grid.tables([_abcd(lp) for lp in new.loops])
+        new.xstart = sup.start(new.x0)
         return new
 
     def mu(self, forgetting: float) -> np.ndarray:
@@ -314,6 +330,43 @@ class Prepared:
         return SupervisedRun(r.horizon, r.dt, r.energy, r.input_energy, r.switch_times, r.sequence,
                              r.time_share, r.x_final, self.points, mu, r.diverged_at)
 
+    def control(self, sigma) -> dict:
+        """How the control input moves along a sequence: its steps at the switches and its RMS.
+
+        Parameters
+        ----------
+        sigma : (n_blocks,) array_like of int
+            One candidate per decision interval (e.g. decided by :meth:`decide`).
+
+        Returns
+        -------
+        dict
+            ``jumps`` ((m,) ndarray: ‖u(t⁺) − u(t⁻)‖ at each switch), ``rms`` (``√(∫‖u‖² / T)``
+            over the run) and ``times`` (the switches, s).
+        """
+        from .realization import control_maps
+
+        sigma = np.asarray(sigma).astype(np.int64)
+        sup, g = self.sup, self.grid
+        maps = control_maps(sup.plant, sup.candidates, sup.K0, estimate_input=self.two_signals)
+        u_tables = g.tables([(lp.A, lp.B, Ku, Du) for lp, (Ku, Du) in zip(self.loops, maps, strict=True)])
+        e, _big, _x = g.run(u_tables, sigma[g.block], False, self.xstart)
+        change = np.flatnonzero(np.diff(sigma)) + 1
+        at = np.searchsorted(g.block, change)             # the first step of each new candidate
+        x, jumps, start = self.xstart.copy(), [], 0
+        sig = self.d if not self.two_signals else self.estimate
+        for k, s in zip(change, at, strict=True):
+            _e, _b, x = g.run(self.tables, sigma[g.block], False, x, start, s)
+            t = float(g.edges[s])
+            w = np.atleast_1d(np.asarray(self.d([t]), dtype=float)).ravel()
+            if self.two_signals:
+                w = np.r_[w, np.atleast_1d(np.asarray(sig([t]), dtype=float)).ravel()]
+            (Kq, Dq), (Kp, Dp) = maps[sigma[k - 1]], maps[sigma[k]]
+            jumps.append(float(np.linalg.norm((Kp - Kq) @ x + (Dp - Dq) @ w)))
+            start = s
+        return {"jumps": np.array(jumps), "rms": float(np.sqrt(e.sum() / self.horizon)),
+                "times": change * sup.decide_every}
+
     def fixed(self, i: int) -> float:
         """∫zᵀz of one candidate held throughout, from x0 (by the same exact engine).
 
@@ -335,12 +388,16 @@ class Prepared:
         return int(i)
 
     def energy_of(self, loop) -> float:
-        """∫zᵀz of any other loop from x0, by the same exact engine.
+        """∫zᵀz of any other fixed controller or loop from x0, by the same exact engine.
 
         Parameters
         ----------
-        loop : LTISystem
-            Of the plant's state size (e.g. the closed loop of a gain that is not a candidate).
+        loop : LTISystem or Controller
+            A closed loop whose first n states are the plant's (its others start at rest), with
+            d as its one input: e.g. the closed loop of a gain or controller that is not a
+            candidate. A :class:`~fdsc.controller.Controller` is closed on the plant; if it
+            reads ŵ and the run has an estimate (with ``copies_on_estimate``), it reads the
+            estimate.
 
         Returns
         -------
@@ -349,20 +406,30 @@ class Prepared:
         Raises
         ------
         TypeError, DimensionError, ValueError
-            If ``loop`` is not an LTISystem of the plant's size with one input, or not stable.
+            If ``loop`` is neither, has fewer states than the plant or more than one input, or
+            is not stable.
         """
+        from ._blocks import Grid
+        from .controller import Controller
         from .plant import LTISystem
 
-        check_type("loop", loop, LTISystem, "an fdsc.LTISystem")
+        check_type("loop", loop, LTISystem | Controller, "an fdsc.LTISystem or fdsc.Controller")
+        g = self.grid
+        if isinstance(loop, Controller):
+            two = self.estimate is not None and self.two_signals_asked and loop.reads_estimate
+            loop = loop.closed_loop(self.sup.plant, estimate_input=two)
+            if two and not self.two_signals:
+                g = Grid(self.d, self.points, estimate=self.estimate)
         n = self.x0.size
-        if loop.A.shape != (n, n) or loop.B.shape[1] != 1:
-            raise DimensionError(f"loop must have the plant's {n} states and one input, but found "
-                                 f"A {loop.A.shape} and B {loop.B.shape}")
+        if loop.A.shape[0] < n or loop.B.shape[1] != (2 if g.channels is not None and
+                                                          loop.B.shape[1] == 2 else 1):
+            raise DimensionError(f"loop must have at least the plant's {n} states and one input, but "
+                                 f"found A {loop.A.shape} and B {loop.B.shape}")
         worst = float(np.max(np.linalg.eigvals(loop.A).real))
         if worst >= 0:
             raise ValueError(f"loop must be stable, but A has an eigenvalue with real part {worst:.4g}")
-        g = self.grid
-        e = float(g.run(g.tables([_abcd(loop)]), 0, False, self.x0)[0].sum())
+        x0 = np.r_[self.x0, np.zeros(loop.A.shape[0] - n)]
+        e = float(g.run(g.tables([_abcd(loop)]), 0, False, x0)[0].sum())
         if not math.isfinite(e):
             raise EnergyOverflowError("energy_of: the energy exceeds the float range (about 1.8e308)")
         return e

@@ -11,7 +11,7 @@ import numpy as np
 
 from ._validation import check_type
 
-__all__ = ["lqr_gain", "band_filter", "MAX_FILTER_EDGE"]
+__all__ = ["lqr_gain", "band_filter", "control_maps", "MAX_FILTER_EDGE"]
 
 #: The band edges (rad/s) a monitoring filter resolves: [1 / MAX_FILTER_EDGE, MAX_FILTER_EDGE].
 MAX_FILTER_EDGE = 1e6
@@ -69,24 +69,102 @@ def lqr_gain(plant) -> np.ndarray:
     return K
 
 
-def copies_loop(plant, gains, K0, m):
-    """The loop with candidate m active in the realization through copies: state
-    ``[x; x̂_0; …; x̂_{I−1}]``, ``u = K0 x + (K_m − K0) x̂_m``, each copy ``ẋ̂_i = (A + B2 K_i) x̂_i
-    + B1 d``, output ``z = C x + D1 d + D2 u``."""
+def copies_loop(plant, controllers, K0, m, *, estimate_input: bool = False):
+    """The loop with candidate m active in the realization through copies (Hespanha and Morse,
+    Automatica 2002): state ``[x; c_0; …; c_{I−1}]`` with ``c_i = [x̂_i; x̂_k,i]`` a copy of
+    candidate i's closed loop (its controller's states included) driven by ŵ, and
+    ``u = K0 x + (u_m − K0 x̂_m)`` with ``u_m`` the control copy m applies; output
+    ``z = C x + D1 d + D2 u``. For gains ``c_i = x̂_i`` and ``u = K0 x + (K_m − K0) x̂_m``.
+
+    Parameters
+    ----------
+    plant : Plant
+    controllers : sequence of Controller
+    K0 : (m_u, n) ndarray
+    m : int
+        The active candidate.
+    estimate_input : bool, optional
+        False: one input d (the copies run on ŵ = d). True: inputs ``[d; ŵ]``, the plant on d,
+        the copies (and the active controller's direct ŵ term) on ŵ.
+
+    Returns
+    -------
+    LTISystem
+    """
     from .plant import LTISystem
 
     A, B1, B2, C, D1, D2 = plant.A, plant.B1, plant.B2, plant.C, plant.D1, plant.D2
-    n, nm = A.shape[0], len(gains)
-    N = n * (nm + 1)
+    n = A.shape[0]
+    loops = [c.closed_loop(plant) for c in controllers]         # each copy runs on ŵ alone
+    sizes = [lp.n_states for lp in loops]
+    offs = np.cumsum([n, *sizes])
+    N = int(offs[-1])
+    Cu, Du = controllers[m].control_map(plant)
+    S = np.zeros((n, sizes[m]))
+    S[:, :n] = np.eye(n)
+    o, k = offs[m], sizes[m]
     Aa = np.zeros((N, N))
     Aa[:n, :n] = A + B2 @ K0
-    Aa[:n, n * (m + 1):n * (m + 2)] = B2 @ (gains[m] - K0)
+    Aa[:n, o:o + k] = B2 @ (Cu - K0 @ S)
     Ca = np.zeros((C.shape[0], N))
     Ca[:, :n] = C + D2 @ K0
-    Ca[:, n * (m + 1):n * (m + 2)] = D2 @ (gains[m] - K0)
-    for i, K in enumerate(gains):
-        Aa[n * (i + 1):n * (i + 2), n * (i + 1):n * (i + 2)] = A + B2 @ K
-    return LTISystem(Aa, np.tile(B1, (nm + 1, 1)), Ca, D1)
+    Ca[:, o:o + k] = D2 @ (Cu - K0 @ S)
+    for lp, oi, ki in zip(loops, offs[:-1], sizes, strict=True):
+        Aa[oi:oi + ki, oi:oi + ki] = lp.A
+    if estimate_input:
+        Bd = np.zeros((N, B1.shape[1]))
+        Bd[:n] = B1
+        Bw = np.zeros((N, B1.shape[1]))
+        Bw[:n] = B2 @ Du
+        for lp, oi, ki in zip(loops, offs[:-1], sizes, strict=True):
+            Bw[oi:oi + ki] = lp.B
+        return LTISystem(Aa, np.hstack([Bd, Bw]), Ca, np.hstack([D1, D2 @ Du]))
+    Ba = np.vstack([B1 + B2 @ Du, *[lp.B for lp in loops]])
+    return LTISystem(Aa, Ba, Ca, D1 + D2 @ Du)
+
+
+def control_maps(plant, controllers, K0, *, estimate_input: bool = False) -> list:
+    """``[(Ku_m, Du_m)]``: the control input ``u = Ku_m ξ + Du_m w`` of each switched loop on its
+    state ξ (:meth:`fdsc.Supervisor.switched_loops`), w its input (d, or ``[d; ŵ]``).
+
+    Parameters
+    ----------
+    plant : Plant
+    controllers : sequence of Controller
+    K0 : (m_u, n) ndarray or None
+        None: the direct realization; else the realization through copies.
+    estimate_input : bool, optional
+        As the switched loops.
+
+    Returns
+    -------
+    list of (ndarray, ndarray)
+    """
+    n, m, nd = plant.n_states, plant.n_controls, plant.B1.shape[1]
+    maps = [c.control_map(plant) for c in controllers]
+    if K0 is None:
+        sizes = [c.n_states for c in controllers]
+        N = n + sum(sizes)
+        offs = np.cumsum([n, *sizes])
+        out = []
+        for (Cu, Du), o, k in zip(maps, offs[:-1], sizes, strict=True):
+            Ku = np.zeros((m, N))
+            Ku[:, :n] = Cu[:, :n]
+            Ku[:, o:o + k] = Cu[:, n:]
+            out.append((Ku, np.hstack([np.zeros((m, nd)), Du]) if estimate_input else Du))
+        return out
+    sizes = [n + c.n_states for c in controllers]
+    offs = np.cumsum([n, *sizes])
+    N = int(offs[-1])
+    out = []
+    for (Cu, Du), o, k in zip(maps, offs[:-1], sizes, strict=True):
+        S = np.zeros((n, k))
+        S[:, :n] = np.eye(n)
+        Ku = np.zeros((m, N))
+        Ku[:, :n] = K0
+        Ku[:, o:o + k] = Cu - K0 @ S
+        out.append((Ku, np.hstack([np.zeros((m, nd)), Du]) if estimate_input else Du))
+    return out
 
 
 def band_filter(band):

@@ -48,6 +48,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._validation import as_positive
+from .controller import Controller, as_controller, switched_loops
 from .decisions import SupervisedRun, _check_mu
 from .prepared import Prepared, _run_on_grid
 from .realization import band_filter, copies_loop
@@ -65,8 +66,11 @@ class Supervisor:
     plant : Plant
         The open-loop plant (one disturbance input, ``B1`` nonzero, so that the estimate
         ŵ = B1⁺(ẋ − A x − B2 u) of the nominal plant is d).
-    gains : sequence of (m_u, n) array_like
-        The candidate state-feedback gains (two or more), each stabilizing.
+    gains : sequence of (m_u, n) array_like or Controller
+        The candidates (two or more), each stabilizing: state-feedback gains, or controllers
+        with states (:class:`fdsc.Controller`; a copy of its loop carries its controller's
+        states, and in the direct realization every controller runs on x, the active one sets
+        u).
     law : {"cost", "band_power"}, optional
         ``"cost"`` (default): the predictive-cost supervisor; monitor i is a copy of closed loop
         i driven by ŵ, μ_i its fading output energy, and the law picks the least μ.
@@ -115,14 +119,16 @@ class Supervisor:
         if not np.any(plant.B1):
             raise ValueError("plant: B1 is zero, so the disturbance cannot be estimated from "
                              "ẋ − A x − B2 u")
-        if isinstance(gains, np.ndarray) and gains.ndim == 2 or not hasattr(gains, "__len__"):
-            raise TypeError("gains must be a sequence of gains (each (m_u, n)), not one gain")
+        if isinstance(gains, np.ndarray) and gains.ndim == 2 or not hasattr(gains, "__len__") \
+                or isinstance(gains, Controller):
+            raise TypeError("gains must be a sequence of gains (each (m_u, n)) or controllers, not one")
         if len(gains) < 2:
             raise ValueError(f"gains must hold at least two candidate gains, but found {len(gains)}")
-        gains = [np.array(as_matrix(f"gains[{k}]", K, (mu_, n))) for k, K in enumerate(gains)]
+        candidates = tuple(as_controller(K, plant, f"gains[{k}]") for k, K in enumerate(gains))
+        gains = [np.array(c.gain) if c.is_static else c for c in candidates]
         loops = []
-        for k, K in enumerate(gains):
-            loop = plant.closed_loop(K)
+        for k, c in enumerate(candidates):
+            loop = c.closed_loop(plant)
             worst = float(np.max(np.linalg.eigvals(loop.A).real))
             if worst >= 0:
                 raise ValueError(f"gains[{k}] must stabilize the plant, but its closed loop has an "
@@ -158,20 +164,61 @@ class Supervisor:
                 raise ValueError(f"K0 must stabilize the plant, but A + B2 K0 has an eigenvalue "
                                  f"with real part {worst:.4g}")
         self.plant, self.gains, self.loops, self.K0 = plant, gains, loops, K0
+        self.candidates = candidates
 
     @property
     def realization(self) -> str:
         """``"direct"`` (u = K_σ x) or ``"copies"`` (u = K0 x + (K_σ − K0) x̂_σ)."""
         return "direct" if self.K0 is None else "copies"
 
-    def switched_loops(self) -> list:
-        """The loop with each candidate active: the closed loops (direct), or the plant with
-        every copy, ``[x; x̂_0; …]`` (copies)."""
-        if self.K0 is None:
-            return list(self.loops)
-        return [copies_loop(self.plant, self.gains, self.K0, m) for m in range(len(self.gains))]
+    def switched_loops(self, *, estimate_input: bool = False) -> list:
+        """The loop with each candidate active: the closed loops (direct; with controllers that
+        have states, on the shared state of :func:`fdsc.switched_loops`), or the plant with
+        every copy, ``[x; c_0; …]`` (copies).
 
-    def prepare(self, d, horizon: float, *, x0=None, estimate=None) -> Prepared:
+        Parameters
+        ----------
+        estimate_input : bool, optional
+            Two inputs ``[d; ŵ]``: the plant on d, the copies and whatever reads ŵ on ŵ.
+
+        Returns
+        -------
+        list of LTISystem
+        """
+        if self.K0 is None:
+            if not estimate_input and all(c.is_static for c in self.candidates):
+                return list(self.loops)
+            return switched_loops(self.plant, self.candidates, estimate_input=estimate_input)
+        return [copies_loop(self.plant, self.candidates, self.K0, m, estimate_input=estimate_input)
+                for m in range(len(self.candidates))]
+
+    def start(self, x0) -> np.ndarray:
+        """The switched loops' initial state for a plant state ``x0``: controllers at rest, the
+        copies of the realization from ``x0`` (their controllers at rest).
+
+        Parameters
+        ----------
+        x0 : (n,) array_like
+
+        Returns
+        -------
+        ndarray
+        """
+        x0 = np.asarray(x0, dtype=float)
+        ks = [c.n_states for c in self.candidates]
+        if self.K0 is None:
+            return np.r_[x0, np.zeros(sum(ks))] if any(ks) else x0
+        if not any(ks):
+            return np.tile(x0, len(self.candidates) + 1)
+        return np.concatenate([x0, *[np.r_[x0, np.zeros(k)] for k in ks]])
+
+    @property
+    def reads_estimate(self) -> bool:
+        """Whether the plant's input depends on ŵ (through copies, or a candidate reading ŵ)."""
+        return self.K0 is not None or any(c.reads_estimate for c in self.candidates)
+
+    def prepare(self, d, horizon: float, *, x0=None, estimate=None,
+                copies_on_estimate: bool = True) -> Prepared:
         """The monitors' interval energies and the loops' step tables for one disturbance, from
         which :meth:`Prepared.run` evaluates the law for any forgetting and hysteresis.
 
@@ -184,15 +231,19 @@ class Supervisor:
         x0 : (n,) array_like, optional
             Initial state of the plant (default 0); the monitors start from rest.
         estimate : Sinusoids or Piecewise, optional
-            The signal the monitors are driven by, if not ``d`` itself: an estimate ŵ with
-            errors (e.g. ``d`` plus measurement noise). Only the decisions see it; the plant and
-            the copies of the realization are driven by ``d``.
+            The estimate ŵ the controller has, if not ``d`` itself: ``d`` plus an error (e.g.
+            measurement noise). The monitors are driven by it, and so are the copies of the
+            realization and every candidate that reads ŵ (the controller as it can be built);
+            the plant feels ``d``.
+        copies_on_estimate : bool, optional
+            False: only the decisions see ``estimate``; the copies and the candidates run on
+            ``d`` (an idealization: no controller has ``d``). Default True.
 
         Returns
         -------
         Prepared
         """
-        return Prepared(self, d, horizon, x0, estimate)
+        return Prepared(self, d, horizon, x0, estimate, copies_on_estimate=copies_on_estimate)
 
     def run(self, d, horizon: float, *, x0=None, **law) -> SupervisedRun:
         """One run of the law: ``self.prepare(d, horizon, x0=x0).run(**law)``.

@@ -441,6 +441,8 @@ class DirectResult:
 
 
 def _objective_grid(band, n_grid):
+    if band.lower == 0 and not np.isfinite(band.upper):     # the entire range: 0 and 1e-3 … 1e5
+        return np.concatenate([[0.0], np.geomspace(1e-3, 1e5, n_grid)])
     if np.isfinite(band.upper):
         lo = band.lower if band.lower > 0 else band.upper * 1e-4
         w = np.geomspace(lo, band.upper, n_grid)

@@ -322,9 +322,9 @@ def test_a_sequence_of_the_wrong_shape_is_refused():
     (lambda p: p.decide(-np.ones((501, 2))), ValueError, "mu must hold finite, non-negative"),
     (lambda p: p.decide(np.zeros(501)), ValueError, "mu must be a float array"),
     (lambda p: p.energy_of(np.eye(2)), TypeError, "loop must be an fdsc.LTISystem"),
-    (lambda p: p.energy_of(PLANT.closed_loop(GAINS[0]).__class__(np.eye(3) * -1, np.ones((3, 1)),
-                                                                    np.ones((1, 3)), [[0.0]])),
-     DimensionError, "loop must have the plant's 2 states"),
+    (lambda p: p.energy_of(PLANT.closed_loop(GAINS[0]).__class__(np.eye(1) * -1, np.ones((1, 1)),
+                                                                    np.ones((1, 1)), [[0.0]])),
+     DimensionError, "loop must have at least the plant's 2 states"),
     (lambda p: p.energy_of(PLANT.closed_loop(np.array([[5.0, 0.0]]))), ValueError, "loop must be stable"),
 ])
 def test_prepared_refuses_bad_input_by_name(call, error, match):

@@ -1,0 +1,111 @@
+"""fdsc.tuning: exact energies of fixed loops and the local search on them, against the
+full-trajectory simulator, the block-exponential engine, a closed-form scalar optimum, and bad
+input by name."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize import minimize_scalar
+
+from fdsc import (
+    Controller,
+    LTISystem,
+    Piecewise,
+    Plant,
+    Sinusoids,
+    loop_energy,
+    random_hurwitz,
+    simulate,
+    time_grid,
+    tune_controller,
+)
+from fdsc.tuning import _ClassEnergies
+
+D = Piecewise([0.0, 7.3, 15.0, 22.0], [Sinusoids([1.0, 0.4], [0.7, 3.1], [0.2, 1.0]),
+                                       Sinusoids([0.8], [9.0]), Sinusoids([0.5, 0.5], [0.3, 0.9])])
+
+
+def test_the_exact_energy_is_the_simulators_at_a_fine_step():
+    # no feedthrough: z is continuous across the breaks, where Simpson's rule would lose order
+    loop = LTISystem(random_hurwitz(np.random.default_rng(2), 3), [[1.0], [0.5], [0.0]],
+                     [[1.0, 0.0, 2.0]], [[0.0]])
+    exact = loop_energy(loop, D, 22.0)
+    run = simulate(loop, D, time_grid(22.0, 1e-3))
+    assert exact == pytest.approx(run.energy(), rel=1e-7)
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_the_eigenbasis_energies_are_the_block_exponentials(seed):
+    rng = np.random.default_rng(seed)
+    ds = [D, Sinusoids([1.0, 0.2], [0.5, 20.0]), Piecewise([0.0, 3.0, 9.5], [Sinusoids([1.0], [2.0]),
+                                                                            Sinusoids([0.3], [0.1])])]
+    hs = [22.0, 12.0, 9.5]
+    loop = LTISystem(random_hurwitz(rng, 4), rng.normal(size=(4, 1)), rng.normal(size=(2, 4)),
+                     rng.normal(size=(2, 1)))
+    ce = _ClassEnergies(ds, hs)
+    np.testing.assert_allclose(ce(loop), [loop_energy(loop, d, h) for d, h in zip(ds, hs, strict=True)],
+                               rtol=1e-9)
+
+
+def test_an_ill_conditioned_eigenbasis_falls_back_to_the_block_exponentials():
+    # a Jordan-like block (eigenvectors nearly parallel): the closed form is not used
+    loop = LTISystem([[-1.0, 1e4], [0.0, -1.0 - 1e-9]], [[0.0], [1.0]], [[1.0, 0.0]], [[0.0]])
+    ce = _ClassEnergies([D], [22.0])
+    assert ce(loop)[0] == pytest.approx(loop_energy(loop, D, 22.0), rel=1e-12)
+
+
+def test_a_scalar_static_gain_tunes_to_the_one_dimensional_optimum():
+    # ẋ = −x + d + u, z = [x; 0.5 u]: one gain k, found by a bounded scalar search on the same
+    # exact objective
+    plant = Plant([[-1.0]], [[1.0]], [[1.0]], [[1.0], [0.0]], [[0.0], [0.0]], [[0.0], [0.5]])
+    ds, hs = [Sinusoids([1.0], [0.3]), Sinusoids([1.0], [2.0])], [40.0, 40.0]
+
+    def J(k):
+        cl = plant.closed_loop([[k]])
+        return np.mean([math.log(loop_energy(cl, d, h)) for d, h in zip(ds, hs, strict=True)])
+
+    ref = minimize_scalar(J, bounds=(-20.0, 0.9), method="bounded", options={"xatol": 1e-9})
+    res = tune_controller(plant, ds, hs, [[[0.0]]])
+    assert res.controller.gain[0, 0] == pytest.approx(ref.x, abs=1e-4)
+    assert res.objective == pytest.approx(ref.fun, abs=1e-9) and res.objective < res.start_objectives[0]
+
+
+def test_a_filtered_search_starts_where_the_static_one_ends_and_only_improves():
+    plant = Plant([[0.0, 1.0], [-4.0, -0.4]], [[0.0], [1.0]], [[0.0], [1.0]],
+                  [[1.0, 0.0], [0.0, 0.0]], [[0.0], [0.0]], [[0.0], [0.1]])
+    ds = [D, Sinusoids([1.0], [12.0])]
+    hs = [22.0, 15.0]
+    static = tune_controller(plant, ds, hs, [[[-1.0, -1.0]]], maxiter=400)
+    filt = tune_controller(plant, ds, hs, [static.controller.D], structure="filtered", corner=2.0,
+                           maxiter=400)
+    assert filt.start_objectives[0] == pytest.approx(static.objective, abs=1e-9)
+    assert filt.objective <= static.objective
+    low, high, wc = Controller.filtered_parameters(filt.controller)
+    assert filt.controller.n_states == 2 and wc > 0
+
+
+def test_a_cap_on_the_hinf_norm_holds_on_the_tuned_loop():
+    plant = Plant([[0.0, 1.0], [-4.0, -0.4]], [[0.0], [1.0]], [[0.0], [1.0]],
+                  [[1.0, 0.0], [0.0, 0.0]], [[0.0], [0.0]], [[0.0], [0.1]])
+    free = tune_controller(plant, [D], [22.0], [[[-1.0, -1.0]]], maxiter=400)
+    capped = tune_controller(plant, [D], [22.0], [[[-1.0, -1.0]]], hinf_cap=0.9 * free.hinf, maxiter=400)
+    assert capped.hinf <= 0.9 * free.hinf * 1.01 and capped.objective >= free.objective
+
+
+@pytest.mark.parametrize(("call", "error", "match"), [
+    (lambda p: tune_controller(p, D, [22.0], [[[0.0]]]), TypeError, "disturbances must be a sequence"),
+    (lambda p: tune_controller(p, [D], [22.0, 1.0], [[[0.0]]]), ValueError, "of one length"),
+    (lambda p: tune_controller(p, [D], [22.0], []), ValueError, "starts must hold"),
+    (lambda p: tune_controller(p, [D], [22.0], [[[0.0]]], structure="pid"), ValueError, "structure"),
+    (lambda p: tune_controller(p, [D], [-1.0], [[[0.0]]]), ValueError, "horizons\\[0\\]"),
+    (lambda p: tune_controller(p, ["d"], [1.0], [[[0.0]]]), TypeError, "disturbances\\[0\\]"),
+    (lambda p: tune_controller(p, [D], [22.0], [[[0.0]]], hinf_cap=0.0), ValueError, "hinf_cap"),
+    (lambda p: tune_controller(p, [D], [22.0], [Controller.filtered([[0.0]], [[1.0]], 1.0)]),
+     ValueError, "starts from gains"),
+    (lambda p: loop_energy(p.closed_loop([[0.0]]), D, 0.0), ValueError, "horizon"),
+])
+def test_bad_input_is_refused_by_name(call, error, match):
+    plant = Plant([[-1.0]], [[1.0]], [[1.0]], [[1.0], [0.0]], [[0.0], [0.0]], [[0.0], [0.5]])
+    with pytest.raises(error, match=match):
+        call(plant)
