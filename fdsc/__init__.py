@@ -54,6 +54,7 @@ _EXPORTS = {
     "supervisor": ("LAWS", "Supervisor", "supervise"),
     "prepared": ("Prepared", "shift_signal"),
     "decisions": ("SupervisedRun",),
+    "law_certificate": ("LawCertificate", "copies_l2_bound"),
     "realization": ("band_filter", "lqr_gain"),
     "gc_dwell": ("DwellCertificate", "geromel_colaneri_dwell"),
     "min_switching": ("MinSwitchingCertificate", "min_switching"),
@@ -141,6 +142,7 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers and editors
     from .frequency import BandPeak, band_peak, freqresp, sigma_max, steady_state_gain, steady_state_gains
     from .gc_dwell import DwellCertificate, geromel_colaneri_dwell
     from .h2 import fit_shaping_filter, h2_controller, shaping_filter
+    from .law_certificate import LawCertificate, copies_l2_bound
     from .lmi import GKYPResult, gkyp_certify, gkyp_gamma
     from .lyapunov_jumps import (
         SwitchingCertificate,
@@ -202,7 +204,7 @@ __all__ = [
     # a switching law on the disturbance estimate
     "Supervisor", "Prepared", "SupervisedRun", "supervise", "LAWS", "band_filter", "lqr_gain",
     "shift_signal", "DwellCertificate", "geromel_colaneri_dwell", "MinSwitchingCertificate",
-    "min_switching", "SupervisedCase", "supervise_batch",
+    "min_switching", "SupervisedCase", "supervise_batch", "LawCertificate", "copies_l2_bound",
     # FD-EEF / FD-EPF
     "PowerSplit", "instantaneous_power", "fdeef", "average_power", "steady_state_power",
     "fdeef_autonomous", "fdeef_parseval_autonomous",

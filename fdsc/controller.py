@@ -410,6 +410,9 @@ def switched_loops(plant, controllers, *, estimate_input: bool = False) -> list:
     ------
     TypeError, DimensionError
         As :func:`as_controller` raises them, naming ``controllers[i]``.
+    ValueError
+        If a controller with states is unstable on its own (its states would grow while it is
+        not in the loop).
 
     Examples
     --------
@@ -422,6 +425,11 @@ def switched_loops(plant, controllers, *, estimate_input: bool = False) -> list:
     from .plant import LTISystem
 
     cs = [as_controller(c, plant, f"controllers[{i}]") for i, c in enumerate(controllers)]
+    for i, c in enumerate(cs):
+        if c.n_states and len(cs) > 1 and np.max(np.linalg.eigvals(c.A).real) >= 0:
+            raise ValueError(f"controllers[{i}] is unstable on its own (A_k has an eigenvalue with real "
+                             f"part {np.max(np.linalg.eigvals(c.A).real):.4g}): it cannot run while "
+                             "another controller is active; switch it through copies instead")
     if all(c.n_states == 0 for c in cs):
         return [c.closed_loop(plant, estimate_input=estimate_input) for c in cs]
     n, nd = plant.n_states, plant.B1.shape[1]

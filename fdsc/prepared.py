@@ -185,6 +185,7 @@ class Prepared:
         new.loops = sup.switched_loops(estimate_input=new.two_signals)
         new.tables = new.grid.tables([_abcd(lp) for lp in new.loops])
         new.xstart = sup.start(new.x0)
+        new._u = None                                   # the control's tables are the realization's
         return new
 
     def mu(self, forgetting: float) -> np.ndarray:
@@ -348,8 +349,11 @@ class Prepared:
 
         sigma = np.asarray(sigma).astype(np.int64)
         sup, g = self.sup, self.grid
-        maps = control_maps(sup.plant, sup.candidates, sup.K0, estimate_input=self.two_signals)
-        u_tables = g.tables([(lp.A, lp.B, Ku, Du) for lp, (Ku, Du) in zip(self.loops, maps, strict=True)])
+        if getattr(self, "_u", None) is None:           # the loops with u as their output, once
+            maps = control_maps(sup.plant, sup.candidates, sup.K0, estimate_input=self.two_signals)
+            self._u = (maps, g.tables([(lp.A, lp.B, Ku, Du)
+                                       for lp, (Ku, Du) in zip(self.loops, maps, strict=True)]))
+        maps, u_tables = self._u
         e, _big, _x = g.run(u_tables, sigma[g.block], False, self.xstart)
         change = np.flatnonzero(np.diff(sigma)) + 1
         at = np.searchsorted(g.block, change)             # the first step of each new candidate
@@ -474,6 +478,9 @@ class Prepared:
         for (a, b), c in zip(spans, choice, strict=True):
             e, _big, x = g.run(self.tables, c, False, x, a, b)
             total += float(e.sum())
+        if not math.isfinite(total):
+            raise EnergyOverflowError("segment_law: the energy is not finite (a loop too close to the "
+                                      "imaginary axis, or a disturbance beyond the float range)")
         return total
 
     def clairvoyant(self) -> tuple:

@@ -163,6 +163,12 @@ class Supervisor:
             if worst >= 0:
                 raise ValueError(f"K0 must stabilize the plant, but A + B2 K0 has an eigenvalue "
                                  f"with real part {worst:.4g}")
+        if K0 is None:                  # every controller runs while another is active: stable alone
+            for k, c in enumerate(candidates):
+                if c.n_states and np.max(np.linalg.eigvals(c.A).real) >= 0:
+                    raise ValueError(f"gains[{k}] is unstable on its own (A_k has an eigenvalue with "
+                                     f"real part {np.max(np.linalg.eigvals(c.A).real):.4g}): in the "
+                                     "direct realization it runs while inactive; give K0 (copies)")
         self.plant, self.gains, self.loops, self.K0 = plant, gains, loops, K0
         self.candidates = candidates
 
@@ -211,6 +217,41 @@ class Supervisor:
         if not any(ks):
             return np.tile(x0, len(self.candidates) + 1)
         return np.concatenate([x0, *[np.r_[x0, np.zeros(k)] for k in ks]])
+
+    def certificate(self):
+        """What this law is guaranteed, computed for its candidates (:mod:`fdsc.law_certificate`).
+
+        Returns
+        -------
+        LawCertificate
+            For the realization through copies: whether A + B2 K0 and every candidate's loop
+            are Hurwitz (what the argument needs), the assumptions (exact estimate, decisions on
+            the grid), and an L2 gain bound for any switching on the grid. For the direct
+            realization: not certified here (it needs a dwell time:
+            :func:`fdsc.geromel_colaneri_dwell`).
+
+        Examples
+        --------
+        >>> from fdsc import Plant
+        >>> p = Plant([[-1.0]], [[1.0]], [[1.0]], [[1.0], [0.0]], [[0.0], [0.0]], [[0.0], [0.1]])
+        >>> cert = Supervisor(p, [[[-1.0]], [[-3.0]]], K0=[[-2.0]]).certificate()
+        >>> cert.stable, cert.l2_bound is not None
+        (True, True)
+        """
+        from .law_certificate import LawCertificate, copies_l2_bound
+
+        assumptions = ("the estimate is exact (ŵ = d: a nominal plant, x and ẋ measured)",
+                       f"switches only at the decision points (every {self.decide_every:g} s)")
+        loops_ok = all(lp.is_hurwitz() for lp in self.loops)
+        if self.K0 is None:
+            return LawCertificate("direct", {"every candidate's loop is Hurwitz": loops_ok},
+                                  assumptions, False, None)
+        A0 = self.plant.A + self.plant.B2 @ self.K0
+        checks = {"A + B2 K0 is Hurwitz": bool(np.max(np.linalg.eigvals(A0).real) < 0),
+                  "every candidate's loop is Hurwitz": loops_ok}
+        stable = all(checks.values())
+        bound = copies_l2_bound(self.plant, self.candidates, self.K0, self.decide_every) if stable else None
+        return LawCertificate("copies", checks, assumptions, stable, bound)
 
     @property
     def reads_estimate(self) -> bool:

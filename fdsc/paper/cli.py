@@ -9,13 +9,13 @@ python -m fdsc cold-times [--book DIR] [--out FILE]
                                      results folder each), and write the times to FILE
                                      (default: book/data/cold_times.json, which the book's
                                      environment page shows); takes many minutes
-python -m fdsc disturbance-law [--n N] [--workers W] [--scheduler ADDRESS] [--out FILE]
+python -m fdsc disturbance-law [--n N] [--workers W] [--scheduler ADDRESS] [--out FILE | --replace]
                                [--robustness-only | --measured-only]
-                                     the full non-stationary study of the law on the
-                                     disturbance estimate (N draws per example, default 500),
-                                     on W processes or a Dask scheduler, written to FILE
-                                     (default: book/data/disturbance_law_full.json, which the
-                                     book's chapter reads); takes about 2 s per draw per worker
+                                     the full non-stationary study (fixed controllers and laws;
+                                     N draws per example, default 500), on W processes or a Dask
+                                     scheduler, written to FILE (default:
+                                     out/disturbance_law_full.json; --replace writes the stored
+                                     study book/data/disturbance_law_full.json that the book reads)
 """
 
 import argparse
@@ -150,7 +150,12 @@ def disturbance_law_command(argv=None):
     parser.add_argument("--workers", type=int, default=os.cpu_count() or 1, help="processes")
     parser.add_argument("--scheduler", default=None,
                         help="address of a Dask scheduler (instead of processes)")
-    parser.add_argument("--out", type=Path, default=Path(__file__).resolve().parents[2] / FULL_FILE)
+    root = Path(__file__).resolve().parents[2]
+    parser.add_argument("--out", type=Path, default=Path("out") / FULL_FILE.name,
+                        help="the JSON file to write (default out/disturbance_law_full.json; the book "
+                             "reads the stored study, which only --replace overwrites)")
+    parser.add_argument("--replace", action="store_true",
+                        help=f"write the book's stored study ({FULL_FILE}) instead of --out")
     parser.add_argument("--robustness-only", action="store_true",
                         help="add the robustness study to an existing --out file instead of rerunning")
     parser.add_argument("--measured-only", action="store_true",
@@ -160,6 +165,8 @@ def disturbance_law_command(argv=None):
         parser.error(f"--n must be at least 2, but found {args.n}")
     if args.workers < 1:
         parser.error(f"--workers must be at least 1, but found {args.workers}")
+    if args.replace:
+        args.out = root / FULL_FILE
     start = time.perf_counter()
 
     def run(executor):

@@ -1,7 +1,10 @@
-"""The law on the disturbance estimate under errors of the estimate, for the chapter
-'disturbance_law': measurement noise (:func:`robust_result`), an estimate from sampled
-measurements with a backward-difference derivative or a wrong model (:func:`measured_result`),
-the step independence of the decisions (:func:`step_check`, :func:`hold_check`), and the
+"""The law on the disturbance estimate as a controller can build it, for the chapter
+'disturbance_law': measurement noise on the estimate, which the decisions, the realization's
+copies and every candidate that reads ŵ all see (:func:`robust_result`); an estimate from
+sampled measurements with a backward-difference derivative or a wrong model
+(:func:`measured_result`); the step independence of the decisions (:func:`step_check`,
+:func:`hold_check`); one draw under the chosen law for the chapter's figure (:func:`law_run`);
+the direct realization with a certified dwell (:func:`direct_realization`); and the
 Geromel–Colaneri min-switching law as a certified control (:func:`min_switching_certificate`).
 """
 
@@ -9,28 +12,19 @@ from __future__ import annotations
 
 import functools
 import warnings
+from dataclasses import dataclass
 
 import numpy as np
 
 import fdsc
-from fdsc.paper.pays.disturbance_law_draws import (
-    DECIDE_EVERY,
-    IDEAL_PAIR,
-    RESTART,
-    SEED,
-    Draw,
-    _example,
-    candidates,
-    fixed_gain,
-    law_supervisor,
-    lqr,
-    seeded_draw,
-)
+from fdsc.paper.pays.disturbance_law_draws import SEED, Draw, _example, lqr, seeded_draw
+from fdsc.paper.pays.disturbance_law_runs import candidates, law_supervisor
+from fdsc.paper.pays.fixed_designs import FixedSet
 from fdsc.paper.shared.cache import cached
 
 __all__ = ["ESTIMATE_NOISE_TONES", "noisy_estimate", "robust_result", "step_check", "MEASURED_VARIANTS",
            "MEASURED_DT", "measured_result", "min_switching_certificate", "hold_check",
-           "min_switching_summary"]
+           "min_switching_summary", "LawRun", "law_run", "direct_realization"]
 
 
 #: Tones of the measurement noise on the estimate (a random-phase multisine with Rayleigh
@@ -78,19 +72,20 @@ def noisy_estimate(example, dr: Draw, snr_db: float, rng: np.random.Generator) -
     return fdsc.Piecewise(breaks, parts)
 
 
-def robust_result(example: str, index: int, law: str, fixed_in_advance: str, snr_db: float,
+def robust_result(example: str, index: int, law: str, fs: FixedSet, snr_db: float,
                   seed: int = SEED) -> dict:
-    """Draw ``index`` under a law that decides on a noisy estimate, against the same law on the
-    exact estimate.
+    """Draw ``index`` under a law on a noisy estimate, as built (decisions, copies and candidates
+    that read ŵ on the noisy estimate) and as the idealization where only the decisions see the
+    noise, against the same law on the exact estimate; and the fixed controller chosen in
+    advance on the same noisy estimate (unaffected unless it reads ŵ).
 
     Parameters
     ----------
     example : {"aircraft", "generic"}
     index : int
     law : str
-        ``law/realization/λ/h``.
-    fixed_in_advance : str
-        The candidate the energies are divided by.
+        ``candidates/law/realization/λ/h``.
+    fs : FixedSet
     snr_db : float
         SNR of the estimate (dB).
     seed : int, optional
@@ -99,21 +94,26 @@ def robust_result(example: str, index: int, law: str, fixed_in_advance: str, snr
     Returns
     -------
     dict
-        ``{"noisy": ratio, "exact": ratio, "switches_noisy", "switches_exact"}``.
+        Energies over the fixed controller chosen in advance on the exact estimate: ``noisy``
+        (the law as built), ``decisions_only``, ``exact``, ``fixed_noisy`` (the chosen fixed
+        controller on the noisy estimate); ``switches_noisy``, ``switches_exact``.
     """
     ex, dr = seeded_draw(example, index, seed)
     what = noisy_estimate(ex, dr, snr_db, np.random.default_rng([seed, index, 1]))
-    sup, _shown, lam, h = law_supervisor(example, law)
+    sup, _shown, lam, h = law_supervisor(example, law, fs)
     exact = sup.prepare(dr.d, dr.horizon)
-    noisy = sup.prepare(dr.d, dr.horizon, estimate=what)
-    ref = exact.energy_of(ex.plant.closed_loop(fixed_gain(example, fixed_in_advance)))
-    a = exact.run(forgetting=lam, hysteresis=h)
-    b = noisy.run(forgetting=lam, hysteresis=h)
-    return {"noisy": b.energy / ref, "exact": a.energy / ref, "switches_noisy": b.switches,
+    built = sup.prepare(dr.d, dr.horizon, estimate=what)
+    ideal = sup.prepare(dr.d, dr.horizon, estimate=what, copies_on_estimate=False)
+    chosen = fs.controllers[fs.chosen]
+    ref = exact.energy_of(chosen)
+    a, b = exact.run(forgetting=lam, hysteresis=h), built.run(forgetting=lam, hysteresis=h)
+    c = ideal.run(forgetting=lam, hysteresis=h)
+    return {"noisy": b.energy / ref, "decisions_only": c.energy / ref, "exact": a.energy / ref,
+            "fixed_noisy": built.energy_of(chosen) / ref, "switches_noisy": b.switches,
             "switches_exact": a.switches}
 
 
-def step_check(example: str, index: int, law: str, dts=(1e-3, 5e-4), seed: int = SEED) -> dict:
+def step_check(example: str, index: int, law: str, fs: FixedSet, dts=(1e-3, 5e-4), seed: int = SEED) -> dict:
     """The law on one draw with its switched run stepped by the library's simulator at two steps,
     against the exact run: the decisions must not depend on the step.
 
@@ -122,7 +122,8 @@ def step_check(example: str, index: int, law: str, dts=(1e-3, 5e-4), seed: int =
     example : {"aircraft", "generic"}
     index : int
     law : str
-        ``law/realization/λ/h``.
+        ``candidates/law/realization/λ/h``.
+    fs : FixedSet
     dts : (float, float), optional
         The steps (s), each dividing the decision interval and every break of the draw.
     seed : int, optional
@@ -134,17 +135,15 @@ def step_check(example: str, index: int, law: str, dts=(1e-3, 5e-4), seed: int =
         ``energy_rel_diff`` (largest relative difference of the stepped energies from the exact
         one).
     """
-    ex, dr = seeded_draw(example, index, seed)
-    names, gains = candidates(example)
-    kind, real, lam, h = law.split("/")
-    if kind != "cost":
-        pair_gains = [fixed_gain(example, n) for n in IDEAL_PAIR]
-        gains = pair_gains
-    opts = dict(law=kind, bands=[ex.bands["LF"], ex.bands["HF"]] if kind != "cost" else None,
-                forgetting=float(lam), hysteresis=float(h), decide_every=DECIDE_EVERY,
-                restart=RESTART, K0=lqr(example) if real == "copies" else None)
-    exact = fdsc.supervise(ex.plant, gains, dr.d, dr.horizon, **opts)
-    runs = [fdsc.supervise(ex.plant, gains, dr.d, dr.horizon, dt, **opts) for dt in dts]
+    from fdsc.prepared import _run_on_grid
+
+    _ex, dr = seeded_draw(example, index, seed)
+    sup, _shown, lam, h = law_supervisor(example, law, fs)
+    prep = sup.prepare(dr.d, dr.horizon)
+    mu = prep.mu(lam)
+    sigma = prep.decide(mu, hysteresis=h)
+    exact = prep.run_sequence(sigma)
+    runs = [_run_on_grid(prep, sigma, mu, dt) for dt in dts]
     same = all(np.array_equal(r.switch_times, exact.switch_times)
                and np.array_equal(r.sequence, exact.sequence) for r in runs)
     return {"same_switches": bool(same), "switches": exact.switches,
@@ -158,38 +157,37 @@ MEASURED_VARIANTS = {"sampled": ("exact", 1.0), "backward": ("backward", 1.0),
 MEASURED_DT = 1e-3
 
 
-def measured_result(example: str, index: int, law: str, fixed_in_advance: str, seed: int = SEED) -> dict:
+def measured_result(example: str, index: int, law: str, fs: FixedSet, seed: int = SEED) -> dict:
     """Draw ``index`` under a law run on sampled measurements (:meth:`fdsc.Supervisor.run_measured`
-    at :data:`MEASURED_DT`) in each of :data:`MEASURED_VARIANTS`: the exact derivative; the
-    backward difference; and a plant whose ``A`` is 10 % larger or smaller than the model the
-    estimate, the copies and the monitors use.
+    at :data:`MEASURED_DT`) in each of :data:`MEASURED_VARIANTS`, against the fixed controller
+    chosen in advance run on the same plant (the true one); and the min-switching control.
 
     Parameters
     ----------
     example : {"aircraft", "generic"}
     index : int
     law : str
-        ``law/realization/λ/h``.
-    fixed_in_advance : str
-        The candidate each run's energy is divided by, run on the same plant (the true one).
+        ``candidates/law/realization/λ/h``.
+    fs : FixedSet
     seed : int, optional
 
     Returns
     -------
     dict
-        ``{variant: {"ratio", "switches", "diverged"}}`` and ``"exact"`` (the exact engine on
-        the exact estimate, the same entries).
+        ``{variant: {"ratio", "switches", "diverged"}}``, ``"exact"`` (the exact engine on the
+        exact estimate) and ``"min_switching"``.
     """
     ex, dr = seeded_draw(example, index, seed)
-    sup, _shown, lam, h = law_supervisor(example, law)
-    K = fixed_gain(example, fixed_in_advance)
+    sup, _shown, lam, h = law_supervisor(example, law, fs)
+    chosen = fs.controllers[fs.chosen]
     prep = sup.prepare(dr.d, dr.horizon)
-    refs = {}                                   # the fixed gain's energy on the plant of each scale of A
+    refs = {}                       # the chosen controller's energy on the plant of each scale of A
 
     def ref(scale):
         if scale not in refs:
             p = ex.plant
-            refs[scale] = prep.energy_of(fdsc.Plant(scale * p.A, p.B1, p.B2, p.C, p.D1, p.D2).closed_loop(K))
+            loop = chosen.closed_loop(fdsc.Plant(scale * p.A, p.B1, p.B2, p.C, p.D1, p.D2))
+            refs[scale] = prep.energy_of(loop)
         return refs[scale]
 
     a = prep.run(forgetting=lam, hysteresis=h)
@@ -214,7 +212,7 @@ def measured_result(example: str, index: int, law: str, fixed_in_advance: str, s
 @functools.cache
 @cached
 def min_switching_certificate(example: str = "aircraft") -> fdsc.MinSwitchingCertificate:
-    """The Geromel–Colaneri min-switching law over the cost law's candidates, with its L2-gain
+    """The Geromel–Colaneri min-switching law over the cost law's gains, with its L2-gain
     certificate (:func:`fdsc.min_switching`): the certified negative control.
 
     Parameters
@@ -230,7 +228,7 @@ def min_switching_certificate(example: str = "aircraft") -> fdsc.MinSwitchingCer
     return fdsc.min_switching([ex.plant.closed_loop(K) for K in gains])
 
 
-def hold_check(example: str, index: int, law: str, dts=(MEASURED_DT, MEASURED_DT / 2),
+def hold_check(example: str, index: int, law: str, fs: FixedSet, dts=(MEASURED_DT, MEASURED_DT / 2),
                seed: int = SEED) -> dict:
     """The law run on sampled measurements with the exact derivative at two steps, against the
     exact run: how the hold of the estimate between samples costs with the step.
@@ -240,7 +238,8 @@ def hold_check(example: str, index: int, law: str, dts=(MEASURED_DT, MEASURED_DT
     example : {"aircraft", "generic"}
     index : int
     law : str
-        ``law/realization/λ/h``.
+        ``candidates/law/realization/λ/h``.
+    fs : FixedSet
     dts : (float, float), optional
         The sampling steps (s).
     seed : int, optional
@@ -251,8 +250,8 @@ def hold_check(example: str, index: int, law: str, dts=(MEASURED_DT, MEASURED_DT
         ``excess`` (the relative excess energy over the exact run at each step), ``same_switches``
         (bool per step: the switch instants equal the exact run's).
     """
-    ex, dr = seeded_draw(example, index, seed)
-    sup, _shown, lam, h = law_supervisor(example, law)
+    _ex, dr = seeded_draw(example, index, seed)
+    sup, _shown, lam, h = law_supervisor(example, law, fs)
     exact = sup.prepare(dr.d, dr.horizon).run(forgetting=lam, hysteresis=h)
     excess, same = [], []
     for dt in dts:
@@ -276,3 +275,81 @@ def min_switching_summary(example: str) -> dict:
     """
     c = min_switching_certificate(example)
     return {"l2_bound": c.l2_bound, "rate": c.rate, "candidates": list(candidates(example)[0])}
+
+
+@dataclass(frozen=True)
+class LawRun:
+    """One draw under the chosen law, for the chapter's figure (see :func:`law_run`).
+
+    Parameters
+    ----------
+    draw : Draw
+    names : tuple of str
+        The candidates.
+    run : fdsc.SupervisedRun
+        With the monitoring signals.
+    ratio : float
+        Its energy over the fixed controller chosen in advance's.
+    """
+
+    draw: Draw
+    names: tuple
+    run: fdsc.SupervisedRun
+    ratio: float
+
+
+def law_run(example: str, index: int, law: str, fs: FixedSet, seed: int = SEED) -> LawRun:
+    """Draw ``index`` of the seeded sequence under a law, with its monitoring signals.
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+    index : int
+    law : str
+        ``candidates/law/realization/λ/h``.
+    fs : FixedSet
+        Its energy is divided by the fixed controller chosen in advance's.
+    seed : int, optional
+
+    Returns
+    -------
+    LawRun
+    """
+    _ex, dr = seeded_draw(example, index, seed)
+    sup, shown, lam, h = law_supervisor(example, law, fs)
+    prep = sup.prepare(dr.d, dr.horizon)
+    r = prep.run(forgetting=lam, hysteresis=h)
+    return LawRun(dr, tuple(shown), r, r.energy / prep.energy_of(fs.controllers[fs.chosen]))
+
+
+def direct_realization(example: str, index: int, law: str, seed: int = SEED) -> dict:
+    """The cost law over the gains on draw ``index`` realized directly (u = K_σ x) with the
+    Geromel–Colaneri dwell time of the gains enforced, against its realization through copies.
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+    index : int
+    law : str
+        A setting; its λ and h are used.
+    seed : int, optional
+
+    Returns
+    -------
+    dict
+        ``dwell`` (s, None if none was certified up to 10³ s), ``direct`` and ``copies``
+        (energies), ``direct_switches``, ``copies_switches``.
+    """
+    ex, dr = seeded_draw(example, index, seed)
+    _names, gains = candidates(example)
+    lam, h = (float(v) for v in law.split("/")[-2:])
+    loops = [ex.plant.closed_loop(K) for K in gains]
+    try:
+        tau = fdsc.geromel_colaneri_dwell(loops, tau_max=1e3).tau
+    except fdsc.SolverError:
+        tau = None
+    prep = fdsc.Supervisor(ex.plant, list(gains), decide_every=0.1, restart=20.0).prepare(dr.d, dr.horizon)
+    direct = prep.run(forgetting=lam, hysteresis=h, min_dwell=tau or 0.0)
+    copies = prep.with_K0(lqr(example)).run(forgetting=lam, hysteresis=h)
+    return {"dwell": tau, "direct": direct.energy, "copies": copies.energy,
+            "direct_switches": direct.switches, "copies_switches": copies.switches}

@@ -331,7 +331,7 @@ def fixed_set(example: str, n: int, seed: int) -> FixedSet:
                 c = _tune(plant, pcs, [ctrls["tuned filtered"]], maxiter, label,
                           structure="filtered").controller
             else:
-                F = fdsc.fit_shaping_filter(*_tones(pcs), [])
+                F = fdsc.fit_shaping_filter(*_tones(pcs), edge)
                 c = fdsc.h2_controller(plant, F, reads="x" if fam_name == "H2 (x)" else "x+w", name=label)
             pair.append(c)
         pairs[fam_name] = tuple(pair)
