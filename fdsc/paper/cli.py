@@ -196,6 +196,16 @@ def disturbance_law_command(argv=None):
             os.environ.setdefault(var, "1")
         with ProcessPoolExecutor(args.workers, mp_context=multiprocessing.get_context("spawn")) as pool:
             result = run(pool)
+    if not (args.robustness_only or args.measured_only):
+        # how long the stored study took, and where (the book states it beside the numbers)
+        result["seconds"] = round(time.perf_counter() - start, 1)
+        result["host"] = {"cpus": os.cpu_count(), "workers": args.workers if not args.scheduler else None,
+                          "scheduler": bool(args.scheduler)}
+        args.out.write_text(json.dumps(result, indent=1))
+    if args.replace:
+        from fdsc.paper.shared.fixed_choice import FILE, write_choice
+
+        write_choice(result, Path(__file__).resolve().parent / "data" / FILE)
     for example in ("aircraft", "generic"):
         r = result[example]
         print(f"{example}: median {r['median_ratio_vs_fixed_in_advance']:.3f}x {r['fixed_in_advance']}, "

@@ -1,6 +1,6 @@
-"""fdsc.paper.pays.disturbance_law: the non-stationary draws, the choice of the fixed gain in advance
-and of the law on the training half, the summary's fields, and the seeded study's
-determinism."""
+"""fdsc.paper.pays.disturbance_law: the non-stationary draws, the choices on the training half
+(the law under its switching limit, the reference family), the summary's fields, the runs of one
+draw, and the stored study against what the code recomputes."""
 
 import math
 
@@ -9,6 +9,9 @@ import pytest
 
 import fdsc
 from fdsc.paper.pays import disturbance_law as dl
+from fdsc.paper.pays import disturbance_law_draws as dd
+from fdsc.paper.pays import disturbance_law_runs as runs
+from fdsc.paper.pays.fixed_designs import FixedSet, fixed_set
 from fdsc.paper.pays.generic_example import generic_example
 from fdsc.paper.reproduced.paper_cases import aircraft_example
 
@@ -18,18 +21,18 @@ def test_the_draws_follow_the_stated_distribution(example):
     ex = example()
     rng = np.random.default_rng(5)
     for _ in range(40):
-        dr = dl.draw(ex, rng)
+        dr = dd.draw(ex, rng)
         k = len(dr.dominant)
         assert 6 <= k <= 10 and len(dr.d.parts) == k == len(dr.noise)
         lengths = np.diff(dr.d.breaks)
         assert np.all(lengths >= 20.0 - 1e-9)
         np.testing.assert_allclose(dr.d.breaks * 100, np.round(dr.d.breaks * 100), atol=1e-6)
-        assert dr.horizon >= dr.d.breaks[-1] and dr.horizon - dr.d.breaks[-1] < dl.DECIDE_EVERY
+        assert dr.horizon >= dr.d.breaks[-1] and dr.horizon - dr.d.breaks[-1] < dd.DECIDE_EVERY
         for part, dom, noise in zip(dr.d.parts, dr.dominant, dr.noise, strict=True):
             assert part.power() == pytest.approx(1.0, rel=1e-12)
             share = part.dominance(ex.bands[dom])
             assert 0.8 - 1e-12 <= share <= 1.0
-            assert part.frequencies.size == 2 * (dl.NOISE_TONES if noise else 3)
+            assert part.frequencies.size == 2 * (dd.NOISE_TONES if noise else 3)
         assert dr.changes == sum(a != b for a, b in zip(dr.dominant[:-1], dr.dominant[1:], strict=True))
 
 
@@ -38,103 +41,156 @@ def test_the_segments_are_mixed_as_stated():
     rng = np.random.default_rng(6)
     doms, noises = [], []
     for _ in range(150):
-        dr = dl.draw(ex, rng)
+        dr = dd.draw(ex, rng)
         doms += dr.dominant
         noises += dr.noise
     assert abs(np.mean([d == "LF" for d in doms]) - 0.5) < 0.06
-    assert abs(np.mean(noises) - dl.NOISE_SHARE) < 0.06
+    assert abs(np.mean(noises) - dd.NOISE_SHARE) < 0.06
 
 
-def _fake(index, fixed, runs, oracle):
-    return {"index": index, "horizon": 100.0, "changes": 2, "segments": 3, "fixed": fixed,
-            "oracle": oracle, "ideal": 2.0, "runs": runs, "input_energy": 1.0}
+def _fs(chosen="B"):
+    return FixedSet("aircraft", 6, 1, 3, ("A", "B"), {}, {"A": "tuned", "B": "tuned"}, {}, {"A": 1.0, "B": 0.5},
+                    chosen, [], {}, {}, {}, {}, None)
 
 
-def test_the_choices_are_made_on_the_training_half_only():
-    # training half: B is the better fixed gain and law x the better law; the test half says
-    # the opposite, which must not change the choices
-    x, y = "cost/copies/1/0.1", "band_power/copies/1/0.1"
-    train = [_fake(i, {"A": 2.0, "B": 1.0}, {x: (0.5, 1, False), y: (0.9, 1, False)}, 0.4)
-             for i in range(3)]
-    test = [_fake(i, {"A": 1.0, "B": 4.0}, {x: (2.0, 3, False), y: (0.1, 1, True)}, 1.0)
-            for i in range(3, 6)]
-    st = dl._choose("aircraft", train + test, 1)
-    assert st.fixed_in_advance == "B" and st.law == "cost/copies/1/0.1"
-    np.testing.assert_allclose(st.ratio_vs_fixed_in_advance(), 0.5)
-    np.testing.assert_allclose(st.ratio_vs_best_fixed(), 2.0)
-    assert st.switches_per_change() == 1.5 and st.diverged() == 0
-    # log-gain share: ln(4/2) / ln(4/1) = 1/2
-    np.testing.assert_allclose(st.oracle_share(), 0.5)
-    # where the oracle gains nothing, no share
-    flat = [_fake(i, {"A": 1.0}, {"cost/copies/1/0.1": (1.0, 0, False)}, 1.0) for i in range(4)]
-    st = dl._choose("aircraft", flat, 1)
-    assert np.all(np.isnan(st.oracle_share())) and st.summary()["oracle_share_median"] is None
+def _fake(index, fixed, law_runs, ref, changes=2):
+    return {"index": index, "horizon": 100.0, "changes": changes, "segments": 3, "fixed": fixed,
+            "fdsc": {"FDSC": (3.0, 100, False)}, "oracle": 1.0, "ideal": 2.0,
+            "reference": {f: ref for f in runs.REFERENCE_FAMILIES}, "runs": law_runs, "input_energy": 1.0}
 
 
-def test_a_draw_is_the_same_on_two_runs_and_its_baselines_are_consistent():
-    a = dl.draw_result("generic", 3)
-    b = dl.draw_result("generic", 3)
+def test_the_law_is_chosen_on_the_training_half_under_its_switching_limit(monkeypatch):
+    # x is the cheapest on the training half but switches 5 times per change; y is chosen. The
+    # test half says the opposite of the training half, which must not change the choice.
+    x, y, z = (runs.settings()[k] for k in (0, 1, 2))
+    from fdsc.paper.pays import disturbance_law_study
+
+    monkeypatch.setattr(disturbance_law_study, "settings", lambda: [x, y, z])
+    train = [_fake(i, {"A": 2.0, "B": 1.0}, {x: (0.5, 10, False, 1.0), y: (0.8, 2, False, 0.5),
+                                             z: (0.9, 0, False, 0.0)}, 0.7) for i in range(3)]
+    test = [_fake(i, {"A": 1.0, "B": 2.0}, {x: (0.1, 1, False, 1.0), y: (2.0, 6, False, 3.0),
+                                            z: (1.0, 0, False, 0.0)}, 1.6) for i in range(3, 6)]
+    st = dl.choose("aircraft", train + test, 1, _fs())
+    assert st.law == y and st.fixed_in_advance == "B"
+    np.testing.assert_allclose(st.ratio(), 1.0)            # 2.0 / 2.0 on the test half
+    assert st.switches_per_change() == 3.0
+    np.testing.assert_allclose(st.reference_ratio(), 0.8)
+    np.testing.assert_allclose(st.control_steps(), 3.0)
+    np.testing.assert_allclose(st.fdsc_ratio("FDSC"), 1.5)
+    # the share of the reference's log-gain: ln(1) / ln(0.8) = 0
+    np.testing.assert_allclose(st.share(), 0.0, atol=1e-12)
+    assert st.best_of("", constrained=False) == x
+
+
+def test_no_reference_gain_means_no_share():
+    x = runs.settings()[0]
+    flat = [_fake(i, {"A": 1.0, "B": 1.0}, {k: (1.0, 0, False, 0.0) for k in runs.settings()}, 1.0)
+            for i in range(4)]
+    st = dl.Study("aircraft", 1, tuple(flat), _fs(), x, runs.REFERENCE_FAMILIES[0])
+    assert np.all(np.isnan(st.share()))
+
+
+def test_the_targets_are_judged_on_the_test_draws():
+    x = runs.settings()[0]
+    good = [_fake(i, {"A": 1.0, "B": 1.0}, {x: (0.8, 1, False, 0.1)}, 0.7) for i in range(8)]
+    st = dl.Study("generic", 1, tuple(good), _fs(), x, runs.REFERENCE_FAMILIES[0])
+    assert st.meets()["met"] and st.meets()["got"]["median"] == pytest.approx(0.8)
+    bad = [_fake(i, {"A": 1.0, "B": 1.0}, {x: (0.95, 1, False, 0.1)}, 0.7) for i in range(8)]
+    assert not dl.Study("generic", 1, tuple(bad), _fs(), x, runs.REFERENCE_FAMILIES[0]).meets()["met"]
+
+
+@pytest.fixture(scope="module")
+def fs():
+    return fixed_set("generic", dl.N_RECORD, dd.SEED)
+
+
+def test_a_draw_is_the_same_on_two_runs_and_its_baselines_are_consistent(fs):
+    a = runs.draw_result("generic", 3, dd.SEED, fs)
+    b = runs.draw_result("generic", 3, dd.SEED, fs)
     assert a == b
-    names = dl.candidates("generic")[0]
+    assert set(a["fixed"]) == set(fs.names) and set(a["runs"]) == set(runs.settings())
+    names = runs.candidates("generic")[0]
     # the open loop (a resonance of time constant ~50 s) is a fixed baseline, not a candidate
-    assert "open loop" not in names and set(a["fixed"]) == set(names) | {"open loop"}
-    air = dl.candidates("aircraft")[0]
+    assert "open loop" not in names and "open loop" in a["fixed"]
+    air = runs.candidates("aircraft")[0]
     assert "open loop" in air and "PassC-HF" not in air        # PassC-HF: a pole at −0.0165 /s
-    # the clairvoyant oracle picks, on each piece, the least energy among the candidates: never
-    # worse than holding the best of them when the pieces are taken one by one from the same
-    # state, and here (every piece long) below the best fixed gain
-    assert a["oracle"] < min(a["fixed"].values())
-    assert all(math.isfinite(e) and e > 0 for e, _s, _d in a["runs"].values())
-    assert not any(d for _e, _s, d in a["runs"].values())
+    assert all(math.isfinite(e) and e > 0 for e, _s, _d, _j in a["runs"].values())
+    assert not any(d for _e, _s, d, _j in a["runs"].values())
+    # a fixed controller held by the law through copies, from rest, is its fixed run
+    assert set(a["reference"]) == set(runs.REFERENCE_FAMILIES)
+    # the switches the law makes move u; a law that does not switch moves it not at all
+    assert all(j == 0.0 for _e, s, _d, j in a["runs"].values() if s == 0)
+    assert any(j > 0 for _e, s, _d, j in a["runs"].values() if s > 0)
 
 
-def test_the_record_entries_carry_every_field():
-    part = dl.record_part()
-    front, law = part.entries
-    assert front["id"] == "pareto_front" and law["id"] == "supervisor"
+def test_a_law_held_on_one_controller_of_a_pair_is_that_controllers_fixed_run(fs):
+    key = "tuned filtered pair/cost/copies/0.2/1"
+    sup, _names, _lam, _h = runs.law_supervisor("generic", key, fs)
+    _ex, dr = dd.seeded_draw("generic", 0)
+    prep = sup.prepare(dr.d, dr.horizon)
+    for i, c in enumerate(fs.pairs["tuned filtered"]):
+        assert prep.fixed(i) == pytest.approx(prep.energy_of(c), rel=1e-9)
+
+
+def test_the_record_entry_carries_every_field():
+    (law,) = dl.record_part().entries
+    assert law["id"] == "supervisor"
     for example in ("aircraft", "generic"):
-        pts = front["recomputed"][example]
-        assert len(pts) == len(dl.FRONT_FRACTIONS)
-        hf = [p["gamma_hf"] for p in pts]
-        assert hf == sorted(hf, reverse=True)             # a looser LF bound never costs HF gain
         s = law["recomputed"][example]
         assert s["draws_test"] == dl.N_RECORD // 2 and s["certified"] is True and s["diverged"] == 0
-        assert s["law"]["realization"] == "copies"
+        assert s["law"]["realization"] == "copies" and s["certificate"]["l2_bound"] > 0
         assert 0.0 <= s["win_rate_vs_fixed_in_advance"] <= 1.0
-        # the least-energy fixed gain of each draw is at most the one chosen in advance
-        assert s["median_ratio_vs_best_fixed_per_draw"] >= s["median_ratio_vs_fixed_in_advance"] * (1 - 1e-12)
-        assert len(s["rho_t_ratio_vs_best_fixed"]) == (11 if example == "aircraft" else 21)
+        assert s["reference_family"] in runs.REFERENCE_FAMILIES
+        assert s["fdsc_median_ratio"]["FDSC"] > 1.0            # the printed law never pays here
+        assert len(s["rho_t_ratio_vs_fixed_in_advance"]) == (11 if example == "aircraft" else 21)
 
 
-def test_a_draw_on_sampled_measurements_reports_every_variant(monkeypatch):
-    from fdsc.paper.pays import disturbance_law_robust as rb
+def test_a_stored_choice_matches_the_stored_study():
+    from fdsc.paper.shared.fixed_choice import stored_choice
 
-    ex = aircraft_example()
-    full = dl.draw(ex, np.random.default_rng([dl.SEED, 0]))
-    short = dl.Draw(fdsc.Piecewise(full.d.breaks[:3], full.d.parts[:2]), 30.0, full.dominant[:2],
-                    full.noise[:2])
-    monkeypatch.setattr(rb, "seeded_draw", lambda example, index, seed=dl.SEED: (ex, short))
-    # the certificate at one rate of its grid (the grid search is tested in test_min_switching)
-    names, gains = dl.candidates("aircraft")
-    cert = fdsc.min_switching([ex.plant.closed_loop(K) for K in gains], rates=(316.2,))
-    monkeypatch.setattr(rb, "min_switching_certificate", lambda example: cert)
-    r = rb.measured_result("aircraft", 0, "cost/copies/1/0.1", "PassC-LF")
-    assert set(r) == {"exact", *rb.MEASURED_VARIANTS, "min_switching"}
-    assert not any(v["diverged"] for v in r.values())
-    # sampling at 1 ms moves the aircraft's energy by about a percent, no more
-    assert r["sampled"]["ratio"] == pytest.approx(r["exact"]["ratio"], rel=0.03)
-    # each variant divides by the fixed gain run on its own plant: a wrong A changes the ratio
-    assert r["A+10%"]["ratio"] != r["sampled"]["ratio"] and r["A-10%"]["ratio"] != r["sampled"]["ratio"]
-
-
-def test_the_study_file_holds_the_runs_on_measurements():
     full = dl.load_full()
     if full is None:
         pytest.skip("the full study is not in this checkout")
+    choice = stored_choice()
     for e in ("aircraft", "generic"):
-        m = full["measured"][e]
-        assert m["draws"] == dl.N_ROBUST and m["dt"] == dl.MEASURED_DT
-        assert set(m["variants"]) == {"exact", *dl.MEASURED_VARIANTS, "min_switching"}
-        assert m["min_switching"]["candidates"] == list(dl.candidates(e)[0])
-        # the exact row is the law of the full study on the same draws as the noise study
-        assert m["variants"]["exact"]["median"] == pytest.approx(full["robustness"][e]["exact_median"])
+        assert choice[e]["name"] == full[e]["fixed_in_advance"]
+        assert choice[e]["matrices"] == full[e]["fixed_controllers"][choice[e]["name"]]["matrices"]
+    assert choice["commit"] == full["commit"] and choice["n"] == full["n"] == dl.N_FULL
+
+
+@pytest.mark.parametrize("example", ["aircraft", "generic"])
+def test_the_code_recomputes_a_stored_test_draw(example):
+    # the stored study's first test draw, recomputed now from its stored controllers: every fixed
+    # controller's ratio and the chosen law's, to 1e-6 (the engines are exact; what differs
+    # between machines is rounding)
+    full = dl.load_full()
+    if full is None:
+        pytest.skip("the full study is not in this checkout")
+    r = full[example]
+    fs = dl.stored_fixed_set(full, example)
+    i = r["test_indices"][0]
+    d = runs.draw_result(example, i, full["seed"], fs)
+    ref = d["fixed"][fs.chosen]
+    assert d["runs"][dl.law_key(r["law"])][0] / ref == pytest.approx(r["ratio_vs_fixed_in_advance"][0], rel=1e-6)
+    for name, ratios in r["fixed_ratio"].items():
+        assert d["fixed"][name] / ref == pytest.approx(ratios[0], rel=1e-6), name
+    for fam, ratios in r["reference_ratio"].items():
+        assert d["reference"][fam] / ref == pytest.approx(ratios[0], rel=1e-6), fam
+
+
+def test_a_draw_on_sampled_measurements_reports_every_variant(monkeypatch, fs):
+    from fdsc.paper.pays import disturbance_law_robust as rb
+
+    ex = generic_example()
+    full = dd.draw(ex, np.random.default_rng([dd.SEED, 0]))
+    short = dd.Draw(fdsc.Piecewise(full.d.breaks[:3], full.d.parts[:2]), 30.0, full.dominant[:2],
+                    full.noise[:2])
+    monkeypatch.setattr(rb, "seeded_draw", lambda example, index, seed=dd.SEED: (ex, short))
+    names, gains = runs.candidates("generic")
+    cert = fdsc.min_switching([ex.plant.closed_loop(K) for K in gains], rates=(316.2,))
+    monkeypatch.setattr(rb, "min_switching_certificate", lambda example: cert)
+    r = rb.measured_result("generic", 0, "tuned filtered pair/cost/copies/0.2/0.3", fs)
+    assert set(r) == {"exact", *rb.MEASURED_VARIANTS, "min_switching"}
+    assert not any(v["diverged"] for v in ("exact", "sampled") for v in [r[v]])
+    assert r["sampled"]["ratio"] == pytest.approx(r["exact"]["ratio"], rel=0.05)
+    assert r["A+10%"]["ratio"] != r["sampled"]["ratio"]

@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 import fdsc
 from fdsc.paper.pays.disturbance_law_draws import SEED, _example
 from fdsc.paper.pays.fixed_designs import (
@@ -28,7 +30,7 @@ from fdsc.paper.shared.results import RecordPart, entry
 
 __all__ = ["N_TUNE", "CAP_FACTOR", "FRONT_POINTS", "DYN_RATIOS", "U_PENALTY", "TUNE_MAXITER",
            "RECORD_MAXITER", "FAMILIES", "FixedSet", "fixed_set", "tuning_draws", "static_front",
-           "law_front_gains", "dynamic_front", "record_part", "N_RECORD"]
+           "law_front_gains", "dynamic_front", "record_part", "N_RECORD", "family_summary", "answer"]
 
 #: Draws of the record's study (the same as chapter 'disturbance_law''s record subset).
 N_RECORD = 12
@@ -105,3 +107,65 @@ def record_part(n: int = N_RECORD, seed: int = SEED) -> RecordPart:
         entry("fixed_controllers", "our computation (the strongest fixed controllers)", None, fixed, "new",
               note_x),
     ))
+
+
+def family_summary(full: dict, example: str) -> dict:
+    """From the stored full study: per family, its member of least training score and how it
+    does on the test draws against the fixed controller chosen in advance.
+
+    Parameters
+    ----------
+    full : dict
+        The stored full study (:func:`fdsc.paper.pays.disturbance_law.load_full`).
+    example : {"aircraft", "generic"}
+
+    Returns
+    -------
+    dict
+        ``{family: {"name", "median", "p95", "chosen_wins"}}`` (``chosen_wins``: share of test
+        draws on which the chosen controller has less energy), in the order of :data:`FAMILIES`.
+    """
+    r = full[example]
+    fc = r["fixed_controllers"]
+    out = {}
+    for fam in FAMILIES:
+        members = [k for k, v in fc.items() if v["family"] == fam and math.isfinite(v["train_score"])]
+        if not members:
+            continue
+        best = min(members, key=lambda k: fc[k]["train_score"])
+        q = np.asarray(r["fixed_ratio"][best])
+        out[fam] = {"name": best, "median": float(np.median(q)), "p95": float(np.quantile(q, 0.95)),
+                    "chosen_wins": float(np.mean(q > 1.0 + 1e-6))}
+    return out
+
+
+def answer(full: dict) -> str:
+    """The chapter's answer in one paragraph (Markdown), from the stored full study.
+
+    Parameters
+    ----------
+    full : dict
+
+    Returns
+    -------
+    str
+    """
+    from fdsc.paper.shared.prose import count, pct, times
+
+    parts = []
+    for example in ("aircraft", "generic"):
+        r = full[example]
+        fams = family_summary(full, example)
+        chosen = r["fixed_in_advance"]
+        fc = r["fixed_controllers"][chosen]
+        kind = (f"a controller with {fc['states']} states" if fc["states"] else "a static gain")
+        old = fams["comparator set"]
+        front = fams["static front"]
+        parts.append(
+            f"On the **{example}** example the fixed controller chosen in advance is *{chosen}* ({kind}, "
+            f"{r['fixed_in_advance_family']} family). The best member of the comparator set, chosen the "
+            f"same way ({old['name']}), has a median {times(old['median'])} its energy on "
+            f"{count(r['draws_test'])} test draws, the best point of the static front "
+            f"({front['name']}) {times(front['median'])}; the chosen controller has less energy "
+            f"than they do on {pct(old['chosen_wins'])} and {pct(front['chosen_wins'])} of the draws.")
+    return " ".join(parts)

@@ -31,7 +31,7 @@ __all__ = [
     "LF_TONES", "HF_TONES", "HORIZON", "DT", "RHO_P", "RHO_T", "T_SEGMENT", "RHO_P_STAR",
     "generic_plant", "generic_bands", "lf_disturbance", "hf_disturbance", "mixed_disturbance",
     "piecewise_disturbance", "generic_example", "BandDesign", "SweepWin", "Headline",
-    "GenericStudy", "generic_study", "record_part",
+    "GenericStudy", "generic_study", "chosen_runs", "record_part",
 ]
 
 #: The chain: base mass m1 on the ground spring k0 (damper c0), appendage m2 on the spring k
@@ -467,6 +467,27 @@ def generic_study(n_omega: int = 2000) -> GenericStudy:
     return GenericStudy(designs, eps, sig, omega, sigma, peaks, ctrl.gammas.copy(), ctrl.Q,
                         stationary, rho_p, rho_p_sweep, rho_t, rho_t_sweep, ideal, headline,
                         time.perf_counter() - t0)
+
+
+@cached
+def chosen_runs() -> dict:
+    """The fixed controller chosen in advance (:mod:`fdsc.paper.shared.fixed_choice`) in the
+    generic example's own cases, by the simulator and step of :func:`generic_study`.
+
+    Returns
+    -------
+    dict
+        ``{"name", "stationary": [E_LF, E_HF], "rho_p": [...], "rho_t": [...]}``.
+    """
+    from fdsc.paper.shared.fixed_choice import fixed_in_advance
+
+    name, c = fixed_in_advance("generic")
+    ex = generic_example()
+    pieces = [piecewise_disturbance(r) for r in RHO_T]
+    return {"name": name,
+            "stationary": ex.energies_of(c, [lf_disturbance(), hf_disturbance()]).tolist(),
+            "rho_p": ex.energies_of(c, [mixed_disturbance(r) for r in RHO_P]).tolist(),
+            "rho_t": ex.energies_of(c, [d for d, _ in pieces], [h for _, h in pieces]).tolist()}
 
 
 def record_part() -> RecordPart:

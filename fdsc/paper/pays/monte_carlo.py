@@ -21,6 +21,7 @@ from fdsc.paper.pays.generic_example import generic_example
 from fdsc.paper.reproduced.paper_cases import aircraft_example
 from fdsc.paper.shared.cache import cached
 from fdsc.paper.shared.examples import Example, beats
+from fdsc.paper.shared.fixed_choice import fixed_in_advance
 from fdsc.paper.shared.results import RecordPart, entry
 
 __all__ = [
@@ -199,9 +200,11 @@ class MonteCarlo:
     energy : dict
         ``{controller: (m,) ndarray}``: ∫zᵀz of each tone draw (``inf`` if it diverged).
     in_advance : str
-        The fixed controller chosen in advance.
+        The fixed controller chosen in advance (the stored choice of Part II's study,
+        :mod:`fdsc.paper.shared.fixed_choice`); its energies are in ``energy``.
     pilot : dict
-        ``{fixed controller: mean steady-state energy ratio over the pilot draws}``.
+        ``{member of the comparator set: mean steady-state energy ratio over the pilot draws}``
+        (the earlier choice among the comparator set alone, kept for the record).
     noise_alpha : (k,) ndarray
         Prescribed α of each noise run.
     noise_energy : dict
@@ -426,9 +429,16 @@ def monte_carlo(example: str = "aircraft", *, n: int = N_DRAWS, seed: int = SEED
     pilot = _pilot(ex, N_PILOT, PILOT_SEED)
     fixed = ex.fixed_names
     switched = tuple(ex.designs)
-    return MonteCarlo(example, ex.names, fixed, switched, int(seed), PILOT_SEED, NOISE_SEED, draws.alpha,
-                      comp.energy, min(pilot, key=pilot.get), pilot, alphas, noise_energy, measured,
-                      {k: int(comp.diverged[k].sum() + noise_div[k].sum()) for k in ex.names})
+    # the fixed controller chosen in advance for the non-stationary class, stored by Part II's study
+    choice, ctrl = fixed_in_advance(example)
+    energy = dict(comp.energy)
+    energy[choice] = ex.energies_of(ctrl, list(draws.disturbances))
+    noise_energy = dict(noise_energy)
+    noise_energy[choice] = ex.energies_of(ctrl, noise) if noise else np.zeros(0)
+    diverged = {k: int(comp.diverged[k].sum() + noise_div[k].sum()) for k in ex.names}
+    diverged[choice] = int(np.sum(~np.isfinite(energy[choice])) + np.sum(~np.isfinite(noise_energy[choice])))
+    return MonteCarlo(example, ex.names + (choice,), fixed, switched, int(seed), PILOT_SEED, NOISE_SEED,
+                      draws.alpha, energy, choice, pilot, alphas, noise_energy, measured, diverged)
 
 
 def record_part():

@@ -1,11 +1,12 @@
-"""Figures of the chapter 'disturbance_law' (result in, Axes out)."""
+"""Figures of the chapters 'fixed_controllers' and 'disturbance_law' (result in, Axes out)."""
 
 import numpy as np
 
 from fdsc.paper.shared.plotting import _axes
-from fdsc.paper.shared.style import band_color, style
+from fdsc.paper.shared.style import FAMILY_STYLES, band_color, family_style
 
-__all__ = ["plot_law_run", "plot_law_cdf", "plot_front", "plot_law_rho_t"]
+__all__ = ["plot_law_run", "plot_ratio_cdf", "plot_fixed_plane", "plot_family_ratios",
+           "plot_switch_tradeoff", "plot_law_rho_t"]
 
 
 def plot_law_run(lr, axes):
@@ -29,38 +30,153 @@ def plot_law_run(lr, axes):
             ax.axvspan(a, b, color=band_color(dom), alpha=0.12, lw=0)
     t, mu = lr.run.t_mu, lr.run.mu
     keep = np.any(mu > 0, axis=0)
+    colors = ("tab:red", "goldenrod", "tab:blue", "0.3", "tab:green", "tab:purple", "tab:brown")
     for i, name in enumerate(lr.names):
         if keep[i]:
-            st = style(name, i)
-            top.semilogy(t[1:], np.maximum(mu[1:, i], 1e-300), color=st["color"], ls=st["linestyle"],
-                         lw=1, label=name)
+            top.semilogy(t[1:], np.maximum(mu[1:, i], 1e-300), color=colors[i % len(colors)],
+                         ls=("-", "--", "-.", ":")[i % 4], lw=1.2, label=name)
     lo = np.quantile(mu[1:][mu[1:] > 0], 0.02)
     top.set_ylim(lo, mu.max() * 3)
     top.set_ylabel(r"monitoring signal $\mu_i$ [-]")
-    top.legend(fontsize=7, ncol=3, loc="lower right")
+    top.legend(fontsize=8, ncol=2, loc="lower right")
     edges = np.r_[0.0, lr.run.switch_times, lr.run.horizon]
-    y = [lr.names.index(lr.names[s]) for s in lr.run.sequence]
-    bottom.stairs(y, edges, color="k", lw=1.2, baseline=None)
-    bottom.set_yticks(range(len(lr.names)), lr.names, fontsize=7)
+    bottom.stairs(list(lr.run.sequence), edges, color="k", lw=1.2, baseline=None)
+    bottom.set_yticks(range(len(lr.names)), lr.names, fontsize=8)
     bottom.set_ylim(-0.5, len(lr.names) - 0.5)
     bottom.set_xlabel("t [s]")
-    bottom.set_ylabel("active gain")
+    bottom.set_ylabel("active controller")
     for ax in (top, bottom):
         ax.set_xlim(0, lr.run.horizon)
         ax.grid(True, alpha=0.3)
     return top, bottom
 
 
-def plot_law_cdf(full, example, ax=None):
-    """Empirical distribution, over the test draws, of the energy over the fixed gain chosen in
-    advance: the law, the band-power law, the least-energy fixed gain of each draw, the clairvoyant
-    oracle and the ideal segment law.
+def plot_ratio_cdf(series, reference, ax=None, *, xlim=(0.5, 2.0)):
+    """Empirical distributions, over test draws, of energies over the fixed controller chosen
+    in advance's; a curve beyond the axis is named in its label with its median.
 
     Parameters
     ----------
-    full : dict
-        The full study (:func:`fdsc.paper.pays.disturbance_law.load_full`).
-    example : str
+    series : dict
+        ``{label: ratios}``, drawn in this order with one colour and line style each.
+    reference : str
+        The name of the fixed controller chosen in advance (the axis label).
+    ax : Axes, optional
+    xlim : (float, float), optional
+
+    Returns
+    -------
+    Axes
+    """
+    ax = _axes(ax, (7, 4))
+    colors = ("darkgreen", "#1b9e77", "k", "#7570b3", "tab:purple", "tab:brown", "0.5", "tab:orange")
+    styles = ("-", "--", ":", "-.", "-", "--", ":", "-.")
+    for k, (name, v) in enumerate(series.items()):
+        v = np.sort(np.asarray(v, dtype=float))
+        med = float(np.median(v))
+        label = name if xlim[0] <= med <= xlim[1] else f"{name} (median ×{med:.3g}, off the axis)"
+        ax.step(v, np.arange(1, v.size + 1) / v.size, where="post", color=colors[k % len(colors)],
+                ls=styles[k % len(styles)], lw=1.5, label=label)
+    ax.axvline(1.0, color="0.3", lw=0.8)
+    ax.set_xscale("log")
+    ax.set_xlim(*xlim)
+    ticks = [t for t in (0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 4.0) if xlim[0] <= t <= xlim[1]]
+    ax.set_xticks(ticks, [f"{t:g}" for t in ticks])
+    ax.minorticks_off()
+    ax.set_xlabel(f"energy / energy of {reference} [-]")
+    ax.set_ylabel("share of test draws [-]")
+    ax.set_ylim(0, 1)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8, loc="lower right")
+    return ax
+
+
+def plot_fixed_plane(points, chosen, ax=None, *, top=None):
+    """Every fixed controller in the plane of its LF and HF band peaks, by family; the static and
+    dynamic fronts joined by lines, the one chosen in advance ringed.
+
+    Parameters
+    ----------
+    points : dict
+        ``{name: (family, LF peak, HF peak)}``.
+    chosen : str
+    ax : Axes, optional
+    top : float, optional
+        Peaks above it are off the axes (the caller names them in the caption).
+
+    Returns
+    -------
+    (Axes, list of str)
+        The axes and the names left off.
+    """
+    ax = _axes(ax, (6, 4.5))
+    off, seen = [], set()
+    for fam in FAMILY_STYLES:
+        members = [(n, lf, hf) for n, (f, lf, hf) in points.items() if f == fam]
+        inside = [(n, lf, hf) for n, lf, hf in members
+                  if np.isfinite(lf) and np.isfinite(hf) and (top is None or max(lf, hf) <= top)]
+        off += [n for n, _lf, _hf in members if (n, _lf, _hf) not in inside]
+        if not inside:
+            continue
+        st = family_style(fam)
+        xs, ys = [p[1] for p in inside], [p[2] for p in inside]
+        if fam in ("static front", "dynamic front"):
+            order = np.argsort(xs)
+            ax.plot(np.array(xs)[order], np.array(ys)[order], color=st["color"], lw=0.8, zorder=1)
+        ax.plot(xs, ys, ls="none", marker=st["marker"], color=st["color"], ms=6,
+                label=fam if fam not in seen else None, zorder=2)
+        seen.add(fam)
+    if chosen in points and np.isfinite(points[chosen][1]):
+        _f, lf, hf = points[chosen]
+        ax.plot(lf, hf, ls="none", marker="o", ms=14, mfc="none", mec="tab:red", mew=1.5,
+                label="chosen in advance", zorder=3)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel(r"LF band peak $\gamma_{LF}$ [-]")
+    ax.set_ylabel(r"HF band peak $\gamma_{HF}$ [-]")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8, loc="best")
+    return ax, off
+
+
+def plot_family_ratios(ratios, reference, ax=None):
+    """Box plots, over test draws, of the best member of each family over the fixed controller
+    chosen in advance (log scale).
+
+    Parameters
+    ----------
+    ratios : dict
+        ``{label: ratios}`` in the order drawn.
+    reference : str
+    ax : Axes, optional
+
+    Returns
+    -------
+    Axes
+    """
+    ax = _axes(ax, (7, 3.8))
+    labels = list(ratios)
+    ax.boxplot([np.asarray(ratios[k], dtype=float) for k in labels], vert=False, whis=(5, 95),
+               showfliers=False, medianprops={"color": "k"})
+    ax.set_yticks(range(1, len(labels) + 1), labels, fontsize=8)
+    ax.axvline(1.0, color="tab:red", lw=0.8)
+    ax.set_xscale("log")
+    ax.set_xlabel(f"energy / energy of {reference} (5–95 % whiskers) [-]")
+    ax.grid(True, which="both", axis="x", alpha=0.3)
+    return ax
+
+
+def plot_switch_tradeoff(table, chosen, limit, ax=None):
+    """Every law setting on the training draws: energy against switches per change of the
+    dominating band, one marker per candidate set and law; the switching limit and the chosen
+    setting marked.
+
+    Parameters
+    ----------
+    table : list of dict
+        ``{"law", "log_ratio", "switches_per_change"}`` per setting.
+    chosen : str
+    limit : float
     ax : Axes, optional
 
     Returns
@@ -68,73 +184,36 @@ def plot_law_cdf(full, example, ax=None):
     Axes
     """
     ax = _axes(ax, (7, 4))
-    r = full[example]
-    adv = r["fixed_in_advance"]
-    fixed = r["fixed_ratio_vs_fixed_in_advance"]
-    best = np.min(np.array(list(fixed.values())), axis=0)
-    series = (("law on ŵ", r["ratio_vs_fixed_in_advance"]),
-              ("band-power law", r["band_power_ratio_vs_fixed_in_advance"]),
-              ("least-energy fixed gain of each draw", best),
-              ("clairvoyant oracle", r["oracle_ratio"]),
-              ("ideal segment law", r["ideal_ratio"]))
-    for k, (name, v) in enumerate(series):
-        v = np.sort(np.asarray(v))
-        st = style(name if name != "least-energy fixed gain of each draw" else "front 2", k)
-        ax.step(v, np.arange(1, v.size + 1) / v.size, where="post", color=st["color"],
-                ls=st["linestyle"], lw=1.4, label=name)
-    ax.axvline(1.0, color="0.3", lw=0.8)
-    ax.set_xscale("log")
-    ticks = [0.25, 0.5, 1.0, 2.0, 4.0]
-    ax.set_xticks(ticks, [f"{t:g}" for t in ticks])
-    ax.minorticks_off()
-    ax.set_xlabel(f"energy / energy of {adv} (chosen in advance) [-]")
-    ax.set_ylabel("share of test draws [-]")
-    ax.set_ylim(0, 1)
+    groups = {}
+    for row in table:
+        cand, law = row["law"].split("/")[:2]
+        groups.setdefault(f"{cand}, {law.replace('_', '-')} law", []).append(row)
+    marks = ("o", "s", "^", "D", "v", "P")
+    colors = ("0.45", "goldenrod", "tab:blue", "tab:cyan", "darkgreen", "#1b9e77")
+    for k, (label, rows) in enumerate(groups.items()):
+        ax.plot([r["switches_per_change"] for r in rows], [np.exp(r["log_ratio"]) for r in rows],
+                ls="none", marker=marks[k % len(marks)], color=colors[k % len(colors)], label=label)
+    pick = next(r for r in table if r["law"] == chosen)
+    ax.plot(pick["switches_per_change"], np.exp(pick["log_ratio"]), ls="none", marker="o", ms=14,
+            mfc="none", mec="tab:red", mew=1.5, label="chosen")
+    ax.axvline(limit, color="tab:red", lw=0.8, ls="--")
+    ax.axhline(1.0, color="0.3", lw=0.8)
+    ax.set_xscale("symlog", linthresh=1.0)
+    ax.set_xlabel("switches per change of the dominating band [-]")
+    ax.set_ylabel("geometric-mean energy ratio [-]")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7, loc="lower right")
-    return ax
-
-
-def plot_front(front, peaks, ax=None):
-    """The Pareto front in the (LF peak, HF peak) plane with the comparator set's gains.
-
-    Parameters
-    ----------
-    front : fdsc.ParetoFront
-    peaks : dict
-        ``{name: (LF peak, HF peak)}`` of the other fixed gains.
-    ax : Axes, optional
-
-    Returns
-    -------
-    Axes
-    """
-    ax = _axes(ax, (6, 4))
-    pts = [p for p in front.points if p is not None]
-    ax.plot([p.peak[1] for p in pts], [p.peak[0] for p in pts], color="#3182bd", lw=1, zorder=1)
-    for j, p in enumerate(pts):
-        st = style(f"front {j + 1}", j)
-        ax.plot(p.peak[1], p.peak[0], marker=st["marker"], color=st["color"], ls="none",
-                label=f"front {j + 1} (β = {p.beta:.3g})")
-    for k, (name, (lf, hf)) in enumerate(peaks.items()):
-        st = style(name, k)
-        ax.plot(lf, hf, marker=st["marker"], color=st["color"], ls="none", label=name)
-    ax.set_xlabel(r"LF band peak $\gamma_{LF}$ [-]")
-    ax.set_ylabel(r"HF band peak $\gamma_{HF}$ [-]")
-    ax.margins(0.15)
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=6, loc="best")
+    ax.legend(fontsize=7, loc="best")
     return ax
 
 
 def plot_law_rho_t(entries, ax=None):
-    """The law's energy over the best fixed gain of the comparator set along the ρ_t family of
+    """The law's energy over the fixed controller chosen in advance along the ρ_t family of
     each example.
 
     Parameters
     ----------
     entries : dict
-        ``{example: {"rho_t": [...], "ratio_vs_best_fixed": [...]}}``.
+        ``{example: {"rho_t": [...], "ratio_vs_fixed_in_advance": [...]}}``.
     ax : Axes, optional
 
     Returns
@@ -142,13 +221,13 @@ def plot_law_rho_t(entries, ax=None):
     Axes
     """
     ax = _axes(ax, (7, 3.5))
-    marks = {"aircraft": ("tab:red", "o"), "generic": ("tab:blue", "s")}
+    marks = {"aircraft": ("tab:blue", "o"), "generic": ("0.3", "s")}
     for name, e in entries.items():
         color, m = marks.get(name, ("k", "."))
-        ax.plot(e["rho_t"], e["ratio_vs_best_fixed"], color=color, marker=m, ms=4, lw=1, label=name)
+        ax.plot(e["rho_t"], e["ratio_vs_fixed_in_advance"], color=color, marker=m, ms=4, lw=1, label=name)
     ax.axhline(1.0, color="0.3", lw=0.8)
     ax.set_xlabel(r"$\rho_t$ [-]")
-    ax.set_ylabel("energy / best fixed [-]")
+    ax.set_ylabel("energy / chosen in advance [-]")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     return ax

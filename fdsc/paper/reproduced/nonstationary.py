@@ -46,7 +46,7 @@ from fdsc.paper.shared.data import (
     paper_gains,
 )
 from fdsc.paper.shared.names import CONTROLLER_GAINS
-from fdsc.paper.shared.prose import count, num, pct, times
+from fdsc.paper.shared.prose import count, num, pct, span, times
 from fdsc.paper.shared.results import RecordPart, entry
 from fdsc.paper.shared.verdict import verdict
 
@@ -336,6 +336,10 @@ class ComparatorCheck:
     best_energy, fdsc, open_loop : (m,) ndarray
         ∫zᵀz of the best fixed controller, of FDSC (paper's gains and Q's) and of the open loop
         at each point.
+    chosen : str
+        The fixed controller chosen in advance (:mod:`fdsc.paper.shared.fixed_choice`).
+    chosen_energy : (m,) ndarray
+        Its ∫zᵀz at each point.
     """
 
     family: str
@@ -344,6 +348,8 @@ class ComparatorCheck:
     best_energy: np.ndarray
     fdsc: np.ndarray
     open_loop: np.ndarray
+    chosen: str = ""
+    chosen_energy: np.ndarray | None = None
 
     @property
     def n_fdsc_better(self) -> int:
@@ -359,16 +365,22 @@ class ComparatorCheck:
             ``{name: text}``: ``n_better``, ``n`` (points), ``winners`` (which member is best how
             often, in words), ``ratio`` (FDSC's energy over the best fixed one's, as a range of
             factors), ``open_loop_better`` (points at which the open loop alone has less energy
-            than FDSC).
+            than FDSC), ``chosen``, ``chosen_better`` (points at which FDSC has less energy than
+            the fixed controller chosen in advance), ``chosen_ratio`` (FDSC's over its, a range).
         """
         names, counts = np.unique(np.asarray(self.best), return_counts=True)
         order = np.argsort(-counts, kind="stable")
         ratio = self.fdsc / self.best_energy
         lo, hi = float(ratio.min()), float(ratio.max())
-        return {"n_better": count(self.n_fdsc_better), "n": count(len(self.best)),
-                "winners": ", ".join(f"{names[k]} at {count(int(counts[k]))}" for k in order),
-                "ratio": times(lo) if times(lo) == times(hi) else f"{times(lo)} to {times(hi)}",
-                "open_loop_better": count(int(np.sum(self.open_loop < self.fdsc)))}
+        out = {"n_better": count(self.n_fdsc_better), "n": count(len(self.best)),
+               "winners": ", ".join(f"{names[k]} at {count(int(counts[k]))}" for k in order),
+               "ratio": times(lo) if times(lo) == times(hi) else f"{times(lo)} to {times(hi)}",
+               "open_loop_better": count(int(np.sum(self.open_loop < self.fdsc)))}
+        if self.chosen_energy is not None:
+            rc = self.fdsc / self.chosen_energy
+            out |= {"chosen": self.chosen, "chosen_better": count(int(np.sum(rc < 1))),
+                    "chosen_ratio": span(float(rc.min()), float(rc.max()), fmt=times)}
+        return out
 
 
 def against_comparators() -> dict:
@@ -383,10 +395,10 @@ def against_comparators() -> dict:
     dict
         ``{"mixed": ComparatorCheck, "piecewise": ComparatorCheck}``.
     """
-    from fdsc.paper.reproduced.paper_cases import baselines
+    from fdsc.paper.reproduced.paper_cases import baselines, chosen_runs
     from fdsc.paper.shared.comparators import best_fixed
 
-    base = baselines()
+    base, chosen = baselines(), chosen_runs()
     out = {}
     for family in ("mixed", "piecewise"):
         scen = base.family(family)
@@ -394,7 +406,8 @@ def against_comparators() -> dict:
         out[family] = ComparatorCheck(family, np.array([s.param for s in scen]), tuple(b[0] for b in best),
                                       np.array([b[1] for b in best]),
                                       np.array([s.energy["FDSC"] for s in scen]),
-                                      np.array([s.energy["open loop"] for s in scen]))
+                                      np.array([s.energy["open loop"] for s in scen]), chosen["name"],
+                                      np.array(chosen[family]))
     return out
 
 

@@ -40,6 +40,7 @@ __all__ = [
     "Scenario",
     "Baselines",
     "baselines",
+    "chosen_runs",
 ]
 
 #: FDSC as printed but with a minimum dwell time (chapter 'wellposed_laws').
@@ -395,3 +396,35 @@ def baselines() -> Baselines:
                       for p, h in zip(sweep.param, sweep.horizon, strict=True)])
     return Baselines(names, tuple(scen), steady, peaks, gammas,
                      {n: np.array(v) for n, v in switches.items()}, ideal)
+
+
+@cached
+def chosen_runs(example: str = "aircraft") -> dict:
+    """The fixed controller chosen in advance (:mod:`fdsc.paper.shared.fixed_choice`) in every
+    simulation case of the paper, by the library's simulator at the book's step (the method of
+    the other controllers' runs), from rest.
+
+    Parameters
+    ----------
+    example : {"aircraft"}
+        The paper's cases are the aircraft's.
+
+    Returns
+    -------
+    dict
+        ``{"name": str, "stationary": [E_LF, E_HF], "mixed": [...], "piecewise": [...]}`` (∫zᵀz
+        at the points of :func:`baselines`).
+    """
+    from fdsc.paper.shared.fixed_choice import fixed_in_advance
+
+    name, c = fixed_in_advance(example)
+    loop = aircraft().closed_loop(c)
+    out = {"name": name, "stationary": [
+        fdsc.simulate_stream(loop, paper_disturbance(k), STATIONARY_HORIZON, STATIONARY_DT).energy
+        for k in ("LF", "HF")]}
+    for family, sweep in (("mixed", mixed_sweep()), ("piecewise", piecewise_sweep())):
+        out[family] = []
+        for p, h in zip(sweep.param, sweep.horizon, strict=True):
+            d, _h = family_signal(family, p)
+            out[family].append(fdsc.simulate_stream(loop, d, float(h), STATIONARY_DT).energy)
+    return out

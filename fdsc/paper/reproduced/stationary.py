@@ -200,15 +200,21 @@ class StationaryComparison:
     kind : {"LF", "HF"}
         The paper's disturbance.
     best : str
-        The best fixed controller: the member of the comparator set of least energy.
+        The member of the comparator set of least energy in this case (known only after it).
     best_energy, fdsc : float
-        ∫zᵀz of the best fixed controller and of FDSC (paper's gains and Q's).
+        ∫zᵀz of that member and of FDSC (paper's gains and Q's).
+    chosen : str
+        The fixed controller chosen in advance (:mod:`fdsc.paper.shared.fixed_choice`).
+    chosen_energy : float
+        Its ∫zᵀz.
     """
 
     kind: str
     best: str
     best_energy: float
     fdsc: float
+    chosen: str = ""
+    chosen_energy: float = float("nan")
 
     def prose(self) -> dict:
         """The numbers the chapter quotes, formatted (:mod:`fdsc.paper.shared.prose`).
@@ -217,15 +223,18 @@ class StationaryComparison:
         -------
         dict
             ``{name: text}``: ``best`` (its name), ``best_energy``, ``ratio`` (FDSC's energy
-            over the best fixed one's, as a factor).
+            over the best member's, as a factor), ``chosen``, ``chosen_energy``,
+            ``chosen_ratio`` (FDSC's over the fixed controller chosen in advance's).
 
         Examples
         --------
-        >>> StationaryComparison("HF", "open loop", 8.74, 9.05).prose()["ratio"]
-        '×1.04'
+        >>> StationaryComparison("HF", "open loop", 8.74, 9.05, "tuned", 4.525).prose()["chosen_ratio"]
+        '×2.00'
         """
         return {"best": self.best, "best_energy": num(self.best_energy, 4),
-                "ratio": times(self.fdsc / self.best_energy)}
+                "ratio": times(self.fdsc / self.best_energy), "chosen": self.chosen,
+                "chosen_energy": num(self.chosen_energy, 4),
+                "chosen_ratio": times(self.fdsc / self.chosen_energy)}
 
 
 def against_comparators() -> dict:
@@ -240,13 +249,15 @@ def against_comparators() -> dict:
     dict
         ``{"LF": StationaryComparison, "HF": StationaryComparison}``.
     """
-    from fdsc.paper.reproduced.paper_cases import baselines
+    from fdsc.paper.reproduced.paper_cases import baselines, chosen_runs
     from fdsc.paper.shared.comparators import best_fixed
 
     out = {}
-    for scen in baselines().family("stationary"):
+    chosen = chosen_runs()
+    for scen, e in zip(baselines().family("stationary"), chosen["stationary"], strict=True):
         name, energy = best_fixed(scen.energy, "aircraft")
-        out[scen.label] = StationaryComparison(scen.label, name, float(energy), float(scen.energy["FDSC"]))
+        out[scen.label] = StationaryComparison(scen.label, name, float(energy), float(scen.energy["FDSC"]),
+                                               chosen["name"], float(e))
     return out
 
 

@@ -32,7 +32,8 @@ try:
 except ImportError:        # not POSIX: no lock (concurrent processes may compute a value twice)
     fcntl = None
 
-__all__ = ["cached", "fingerprint", "shared_results", "file_lock", "worker_threads", "environ",
+__all__ = ["cached", "fingerprint", "source_fingerprint", "STORED_OUTPUTS", "shared_results", "file_lock",
+           "worker_threads", "environ",
            "CACHE_ENV", "THREAD_VARS"]
 
 #: Environment variable naming the cache folder (unset: no caching).
@@ -43,11 +44,35 @@ _PLAIN = (int, float, str, bool, type(None))
 THREAD_VARS = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "NUMBA_NUM_THREADS")
 
 
+#: Files under fdsc/ that the full study writes (its stored outputs): left out of the sources'
+#: fingerprint that the study records, so that writing them does not make the study look stale.
+STORED_OUTPUTS = ("paper/data/fixed_in_advance.json",)
+
+
+def _hash(with_outputs: bool) -> str:
+    root = Path(__file__).resolve().parents[2]
+    h = hashlib.sha256()
+    for path in sorted(root.rglob("*")):
+        if path.suffix in (".py", ".json") and "__pycache__" not in path.parts:
+            rel = str(path.relative_to(root))
+            if not with_outputs and rel in STORED_OUTPUTS:
+                continue
+            h.update(rel.encode())
+            h.update(path.read_bytes())
+    for pkg in ("numpy", "scipy", "cvxpy", "clarabel", "numba"):
+        try:
+            h.update(f"{pkg}={version(pkg)}".encode())
+        except PackageNotFoundError:
+            h.update(f"{pkg}=none".encode())
+    return h.hexdigest()
+
+
 @functools.cache
 def fingerprint() -> str:
     """Hash of every fdsc source file, the paper's data and the numerical packages' versions.
 
-    Computed once per process (the sources do not change under a running build).
+    Computed once per process (the sources do not change under a running build). The results
+    cache keys on it.
 
     Returns
     -------
@@ -59,18 +84,19 @@ def fingerprint() -> str:
     >>> len(fingerprint())
     64
     """
-    root = Path(__file__).resolve().parents[2]
-    h = hashlib.sha256()
-    for path in sorted(root.rglob("*")):
-        if path.suffix in (".py", ".json") and "__pycache__" not in path.parts:
-            h.update(str(path.relative_to(root)).encode())
-            h.update(path.read_bytes())
-    for pkg in ("numpy", "scipy", "cvxpy", "clarabel", "numba"):
-        try:
-            h.update(f"{pkg}={version(pkg)}".encode())
-        except PackageNotFoundError:
-            h.update(f"{pkg}=none".encode())
-    return h.hexdigest()
+    return _hash(True)
+
+
+@functools.cache
+def source_fingerprint() -> str:
+    """:func:`fingerprint` without the study's stored outputs (:data:`STORED_OUTPUTS`): what a
+    stored study records and what the book compares with to tell whether it is stale.
+
+    Returns
+    -------
+    str
+    """
+    return _hash(False)
 
 
 @contextlib.contextmanager

@@ -208,6 +208,29 @@ class Example:
             x = r.x_final
         return float(total)
 
+    def energies_of(self, controller, disturbances, horizons=None, *, dt: float | None = None) -> np.ndarray:
+        """∫zᵀz of one more fixed controller (a gain or an :class:`fdsc.Controller`) under every
+        disturbance, from rest, by the same simulator and step as :meth:`compare`.
+
+        Parameters
+        ----------
+        controller : (m_u, n) array_like or fdsc.Controller
+        disturbances : sequence of Sinusoids, Piecewise or Sampled
+        horizons : sequence of float, optional
+            Default the example's horizon for all.
+        dt : float, optional
+            Default the example's.
+
+        Returns
+        -------
+        ndarray
+        """
+        loop = self.plant.closed_loop(controller)
+        horizons = [self.horizon] * len(disturbances) if horizons is None else list(horizons)
+        dt = self.dt if dt is None else dt
+        cases = [fdsc.Case(loop, d, h, dt) for d, h in zip(disturbances, horizons, strict=True)]
+        return fdsc.simulate_batch(cases).energy.copy()
+
     def compare(self, disturbances, horizons=None, *, dt: float | None = None,
                 names=None, executor=None) -> "Comparison":
         """Every controller under every disturbance, in one :func:`fdsc.simulate_batch` call.

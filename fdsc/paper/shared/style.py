@@ -11,7 +11,8 @@ This module holds data only (no matplotlib): every plotting module of the paper 
 chapter draws through :func:`style`.
 """
 
-__all__ = ["STYLES", "GAIN_CONTROLLER", "BAND_CONTROLLER", "style", "band_color"]
+__all__ = ["STYLES", "GAIN_CONTROLLER", "BAND_CONTROLLER", "FAMILY_STYLES", "style", "band_color",
+           "family_style"]
 
 #: ``{name: (colour, marker, line style)}`` of every controller the book draws.
 STYLES = {
@@ -33,6 +34,17 @@ STYLES = {
     "law on ŵ": ("darkgreen", "o", "-"),
     "band-power law": ("#1b9e77", "d", "--"),
     "clairvoyant oracle": ("#7570b3", "*", ":"),
+}
+
+#: ``{family: (colour, marker)}`` of the fixed controllers of Part II (chapter 'fixed_controllers'):
+#: one palette for families, apart from the paper's controllers' colours where they can meet.
+FAMILY_STYLES = {
+    "comparator set": ("0.45", "o"),
+    "static front": ("#3182bd", "s"),
+    "LQR": ("#e6550d", "P"),
+    "dynamic front": ("#31a354", "D"),
+    "H2": ("#756bb1", "^"),
+    "tuned": ("k", "*"),
 }
 
 #: A printed gain → the controller it is (and is drawn as).
@@ -94,3 +106,23 @@ def band_color(band):
     'tab:red'
     """
     return STYLES[BAND_CONTROLLER[band]][0]
+
+
+def family_style(family):
+    """``{"color", "marker"}`` of a family of fixed controllers (:data:`FAMILY_STYLES`).
+
+    Parameters
+    ----------
+    family : str
+
+    Returns
+    -------
+    dict
+
+    Examples
+    --------
+    >>> family_style("tuned")["marker"]
+    '*'
+    """
+    color, marker = FAMILY_STYLES.get(family, ("tab:gray", "."))
+    return {"color": color, "marker": marker}

@@ -1,0 +1,270 @@
+"""The full study of chapter 'disturbance_law', stored: every draw of both examples under every
+controller on an executor (:func:`full_study`), the runs on a noisy estimate and on sampled
+measurements, the stored file and the fixed controllers rebuilt from it.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+from fdsc._validation import as_count
+from fdsc.paper.pays.disturbance_law_draws import SEED
+from fdsc.paper.pays.disturbance_law_robust import (
+    MEASURED_DT,
+    MEASURED_VARIANTS,
+    measured_result,
+    min_switching_summary,
+    robust_result,
+)
+from fdsc.paper.pays.disturbance_law_runs import REFERENCE_FAMILIES, draw_result
+from fdsc.paper.pays.disturbance_law_study import choose, law_key
+from fdsc.paper.pays.fixed_designs import FixedSet, fixed_set
+from fdsc.paper.shared.examples import beats
+
+__all__ = ["N_FULL", "FULL_FILE", "N_ROBUST", "ROBUST_SNR_DB", "full_study", "stored_fixed_set", "robustness",
+           "measured_robustness", "load_full", "map_draws"]
+
+#: Draws per example of the full study.
+N_FULL = 500
+#: Where the full study is stored (relative to the repository root).
+FULL_FILE = Path("book") / "data" / "disturbance_law_full.json"
+#: Test draws per example and SNRs (dB) of the study of a noisy estimate.
+N_ROBUST, ROBUST_SNR_DB = 40, (20.0, 10.0, 0.0)
+
+def map_draws(fn, args, executor):
+    """``[fn(*a) for a in args]``, here, on a concurrent.futures executor or on a Dask client.
+
+    Parameters
+    ----------
+    fn : callable
+    args : list of tuple
+    executor : Executor or dask.distributed.Client or None
+
+    Returns
+    -------
+    list
+    """
+    if executor is None:
+        return [fn(*a) for a in args]
+    if hasattr(executor, "gather"):                 # a dask.distributed Client
+        return executor.gather([executor.submit(fn, *a, pure=False) for a in args])
+    return list(executor.map(fn, *zip(*args, strict=True)))
+
+
+def _controller_record(c) -> dict:
+    """A controller's matrices for the stored study (so that its numbers can be checked)."""
+    out = {k: getattr(c, k).tolist() for k in "ABCD"}
+    if c.F is not None:
+        out["E"], out["F"] = c.E.tolist(), c.F.tolist()
+    return out
+
+
+def full_study(n: int = N_FULL, *, seed: int = SEED, executor=None, out=None) -> dict:
+    """The full study of both examples.
+
+    Parameters
+    ----------
+    n : int, optional
+        Draws per example (half train, half test).
+    seed : int, optional
+    executor : concurrent.futures.Executor or dask.distributed.Client, optional
+        Where the draws run (default here, one after the other); the numbers do not depend on it.
+    out : path, optional
+        The JSON file to write (None: none).
+
+    Returns
+    -------
+    dict
+        ``commit``, ``fingerprint``, ``n``, ``seed``, and per example the summary
+        (:meth:`Study.summary`) with every test draw's ratios for every fixed controller, FDSC
+        variant, law family and reference, and the fixed controllers' matrices.
+    """
+    from fdsc.paper.shared.cache import source_fingerprint
+    from fdsc.paper.shared.environment import build_commit
+
+    n = as_count("n", n, 4)
+    result = {"commit": build_commit(), "fingerprint": source_fingerprint(), "n": n, "seed": seed}
+    for example in ("aircraft", "generic"):
+        fs = fixed_set(example, n, seed)
+        draws = map_draws(draw_result, [(example, i, seed, fs) for i in range(n)], executor)
+        st = choose(example, draws, seed, fs)
+        result[example] = st.summary() | {
+            "test_indices": [r["index"] for r in st.test],
+            "ratio_vs_fixed_in_advance": st.ratio().tolist(),
+            "fixed_ratio": {k: st.fixed_ratio(k).tolist() for k in fs.names},
+            "fdsc_ratio": {v: st.fdsc_ratio(v).tolist() for v in st.test[0]["fdsc"]},
+            "reference_ratio": {f: st.reference_ratio(f).tolist() for f in REFERENCE_FAMILIES},
+            "family_best": {p: st.best_of(p) for p in ("gains/cost", "ideal pair/band_power",
+                                                       "tuned pair/band_power", "tuned pair/cost",
+                                                       "tuned filtered pair/band_power",
+                                                       "tuned filtered pair/cost")},
+            "family_ratio": {p: st.ratio(st.best_of(p)).tolist()
+                             for p in ("gains/cost", "ideal pair/band_power", "tuned pair/band_power",
+                                       "tuned pair/cost", "tuned filtered pair/band_power",
+                                       "tuned filtered pair/cost")},
+            "settings": st.settings_table(),
+            "oracle_ratio": [r["oracle"] / r["fixed"][fs.chosen] for r in st.test],
+            "ideal_ratio": [r["ideal"] / r["fixed"][fs.chosen] for r in st.test],
+            "control_steps": st.control_steps().tolist(),
+            "fixed_controllers": {k: {"family": fs.family[k], **fs.info[k], "train_score": fs.train_score[k],
+                                      "matrices": _controller_record(fs.controllers[k])} for k in fs.names},
+            "pairs": {f: [_controller_record(c) for c in pair] for f, pair in fs.pairs.items()},
+        }
+    result["robustness"] = robustness(result, n=min(N_ROBUST, n - n // 2), executor=executor)
+    result["measured"] = measured_robustness(result, n=min(N_ROBUST, n - n // 2), executor=executor)
+    if out is not None:
+        Path(out).parent.mkdir(parents=True, exist_ok=True)
+        Path(out).write_text(json.dumps(result, indent=1))
+    return result
+
+
+def stored_fixed_set(full: dict, example: str) -> FixedSet:
+    """The fixed controllers of a stored full study, rebuilt from their stored matrices (to
+    recompute stored draws without redoing the designs).
+
+    Parameters
+    ----------
+    full : dict
+        The full study (:func:`load_full`).
+    example : {"aircraft", "generic"}
+
+    Returns
+    -------
+    FixedSet
+        With the stored names, families, band peaks, scores, choice and pairs; no tuning details.
+    """
+    import fdsc
+
+    r = full[example]
+
+    def ctrl(m, name):
+        E, F = (m["E"], m["F"]) if "E" in m else (None, None)
+        A = np.asarray(m["A"], dtype=float).reshape(len(m["A"]), -1) if m["A"] else np.zeros((0, 0))
+        n = len(m["D"][0])
+        B = np.asarray(m["B"], dtype=float).reshape(A.shape[0], -1) if A.size else np.zeros((0, n))
+        C = np.asarray(m["C"], dtype=float).reshape(len(m["D"]), -1)
+        return fdsc.Controller(A, B, C, np.asarray(m["D"], dtype=float), E=E, F=F, name=name)
+
+    fc = r["fixed_controllers"]
+    names = tuple(fc)
+    info = {k: {x: v[x] for x in ("lf", "hf", "hinf", "states", "size", "reads_estimate", "slowest")}
+            for k, v in fc.items()}
+    pairs = {f: tuple(ctrl(m, f"{f} for {t} segments") for m, t in zip(p, ("LF", "HF"), strict=True))
+             for f, p in r["pairs"].items()}
+    ctrls = {k: ctrl(v["matrices"], k) for k, v in fc.items()}
+    return FixedSet(example, full["n"], full["seed"], 0, names, ctrls,
+                    {k: v["family"] for k, v in fc.items()}, info,
+                    {k: v["train_score"] for k, v in fc.items()}, r["fixed_in_advance"], [], {}, pairs,
+                    {}, {}, None)
+
+
+def robustness(full: dict, *, n: int = N_ROBUST, snrs=ROBUST_SNR_DB, executor=None) -> dict:
+    """The law chosen in the full study on its first ``n`` test draws per example, on a noisy
+    estimate as a controller would build it (:func:`robust_result`).
+
+    Parameters
+    ----------
+    full : dict
+        The full study (:func:`full_study`).
+    n : int, optional
+        Test draws per example.
+    snrs : sequence of float, optional
+        SNRs of the estimate in dB.
+    executor : concurrent.futures.Executor or dask.distributed.Client, optional
+
+    Returns
+    -------
+    dict
+        ``{example: {"draws", "exact_median", "exact_win_rate", "snr_db": {snr: {"median",
+        "win_rate", "decisions_only_median", "fixed_median", "switches_ratio"}}}}``, each against
+        the fixed controller chosen in advance on the exact estimate.
+    """
+    n = as_count("n", n, 1)
+    out = {}
+    for example in ("aircraft", "generic"):
+        r = full[example]
+        fs = stored_fixed_set(full, example)
+        key = law_key(r["law"])
+        first = full["n"] // 2
+        args = [(example, first + i, key, fs, float(snr), full["seed"]) for snr in snrs for i in range(n)]
+        res = map_draws(robust_result, args, executor)
+        per = {}
+        for k, snr in enumerate(snrs):
+            part = res[k * n:(k + 1) * n]
+            noisy = np.array([p["noisy"] for p in part])
+            per[str(float(snr))] = {
+                "median": float(np.median(noisy)), "win_rate": float(np.mean(beats(noisy))),
+                "p95": float(np.quantile(noisy, 0.95)),
+                "decisions_only_median": float(np.median([p["decisions_only"] for p in part])),
+                "fixed_median": float(np.median([p["fixed_noisy"] for p in part])),
+                "switches_ratio": float(sum(p["switches_noisy"] for p in part)
+                                        / max(1, sum(p["switches_exact"] for p in part)))}
+        exact = np.array([p["exact"] for p in res[:n]])
+        out[example] = {"draws": n, "exact_median": float(np.median(exact)),
+                        "exact_win_rate": float(np.mean(beats(exact))), "snr_db": per}
+    return out
+
+
+def measured_robustness(full: dict, *, n: int = N_ROBUST, executor=None) -> dict:
+    """The law chosen in the full study on its first ``n`` test draws per example, run on
+    sampled measurements (:func:`measured_result`).
+
+    Parameters
+    ----------
+    full : dict
+        The full study (:func:`full_study`).
+    n : int, optional
+        Test draws per example.
+    executor : concurrent.futures.Executor or dask.distributed.Client, optional
+
+    Returns
+    -------
+    dict
+        ``{example: {"draws", "dt", "variants": {name: {"median", "win_rate", "p95",
+        "switches_ratio", "diverged"}}, "min_switching": {...}, "commit"}}``.
+    """
+    from fdsc.paper.shared.environment import build_commit
+
+    n = as_count("n", n, 1)
+    out = {}
+    for example in ("aircraft", "generic"):
+        r = full[example]
+        fs = stored_fixed_set(full, example)
+        key = law_key(r["law"])
+        first = full["n"] // 2
+        args = [(example, first + i, key, fs, full["seed"]) for i in range(n)]
+        res = map_draws(measured_result, args, executor)
+        per = {}
+        for name in ("exact", *MEASURED_VARIANTS, "min_switching"):
+            ratio = np.array([p[name]["ratio"] for p in res])
+            per[name] = {"median": float(np.median(ratio)), "p95": float(np.quantile(ratio, 0.95)),
+                         "win_rate": float(np.mean(beats(ratio))),
+                         "switches_ratio": float(sum(p[name]["switches"] for p in res)
+                                                 / max(1, sum(p["exact"]["switches"] for p in res))),
+                         "diverged": int(sum(p[name]["diverged"] for p in res))}
+        out[example] = {"draws": n, "dt": MEASURED_DT, "variants": per,
+                        "min_switching": min_switching_summary(example), "commit": build_commit()}
+    return out
+
+
+def load_full(path=None):
+    """The full study written by :func:`full_study`.
+
+    Parameters
+    ----------
+    path : path, optional
+        Default :data:`FULL_FILE` in the repository this package lies in (whatever the working
+        directory).
+
+    Returns
+    -------
+    dict or None
+        None if the file is absent (outside a checkout of the repository).
+    """
+    path = Path(__file__).resolve().parents[3] / FULL_FILE if path is None else Path(path)
+    if not path.is_file():
+        return None
+    return json.loads(path.read_text())

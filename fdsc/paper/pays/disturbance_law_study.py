@@ -1,0 +1,339 @@
+"""The study of chapter 'disturbance_law': the choices on the training half, the numbers on the
+test half, the targets, and the answer in words (see :mod:`fdsc.paper.pays.disturbance_law`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from fdsc.paper.pays.disturbance_law_draws import DECIDE_EVERY, RESTART
+from fdsc.paper.pays.disturbance_law_runs import REFERENCE_FAMILIES, law_supervisor, settings
+from fdsc.paper.pays.fixed_designs import FixedSet
+from fdsc.paper.shared.examples import beats
+
+__all__ = ["HEADROOM_MIN", "MAX_SWITCHES_PER_CHANGE", "TARGETS", "law_key", "Study", "LAW_WORDS", "describe",
+           "answer", "choose"]
+
+#: The reference's least relative gain over the fixed controller chosen in advance for a draw to
+#: count in the share of it that a law realizes.
+HEADROOM_MIN = 0.01
+#: The most switches per change of the dominating band a law may make to be chosen: one to
+#: follow the change, and two of indecision.
+MAX_SWITCHES_PER_CHANGE = 3.0
+#: The targets a law must meet against the fixed controller chosen in advance (median, least win
+#: rate, largest 95th percentile of the energy ratio on the test draws).
+TARGETS = {"generic": {"median": 0.9, "win_rate": 0.75, "p95": 1.05},
+           "aircraft": {"median": 1.0, "win_rate": 0.0, "p95": math.inf}}
+
+
+def law_key(law: dict) -> str:
+    """The setting ``candidates/law/realization/λ/h`` of a law's parameters as the study stores them.
+
+    Parameters
+    ----------
+    law : dict
+        ``{"candidates", "law", "realization", "forgetting", "hysteresis"}``.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> law_key({"candidates": "gains", "law": "cost", "realization": "copies", "forgetting": 1.0,
+    ...          "hysteresis": 0.1})
+    'gains/cost/copies/1/0.1'
+    """
+    return "{candidates}/{law}/{realization}/{forgetting:g}/{hysteresis:g}".format(**law)
+
+
+@dataclass(frozen=True)
+class Study:
+    """The non-stationary study of one example (see :func:`study`).
+
+    Parameters
+    ----------
+    example : str
+    seed : int
+    draws : tuple of dict
+        :func:`fdsc.paper.pays.disturbance_law_runs.draw_result` of every draw, train half first.
+    fixed : FixedSet
+        Every fixed controller and the one chosen in advance.
+    law : str
+        The setting chosen on the training half.
+    reference : str
+        The family whose clairvoyant reference is best on the training half.
+    """
+
+    example: str
+    seed: int
+    draws: tuple
+    fixed: FixedSet
+    law: str
+    reference: str
+
+    @property
+    def fixed_in_advance(self) -> str:
+        """The fixed controller chosen in advance."""
+        return self.fixed.chosen
+
+    @property
+    def train(self) -> tuple:
+        """The training half."""
+        return self.draws[:len(self.draws) // 2]
+
+    @property
+    def test(self) -> tuple:
+        """The scored half."""
+        return self.draws[len(self.draws) // 2:]
+
+    def _ref(self, r):
+        return r["fixed"][self.fixed_in_advance]
+
+    def ratio(self, law=None, draws=None) -> np.ndarray:
+        """A law's energy over the fixed controller chosen in advance's, per draw.
+
+        Parameters
+        ----------
+        law : str, optional
+            A setting (default the chosen one).
+        draws : sequence of dict, optional
+            Default the test half.
+
+        Returns
+        -------
+        ndarray
+        """
+        law = self.law if law is None else law
+        return np.array([r["runs"][law][0] / self._ref(r) for r in (self.test if draws is None else draws)])
+
+    def switches_per_change(self, law=None, draws=None) -> float:
+        """A law's switches over the changes of the dominating band, summed over the draws.
+
+        Parameters
+        ----------
+        law : str, optional
+        draws : sequence of dict, optional
+            Default the test half.
+
+        Returns
+        -------
+        float
+        """
+        law = self.law if law is None else law
+        draws = self.test if draws is None else draws
+        ch = sum(r["changes"] for r in draws)
+        return float(sum(r["runs"][law][1] for r in draws) / ch) if ch else math.nan
+
+    def settings_table(self) -> list:
+        """Every setting on the training half: mean log ratio and switches per change (the
+        choice's trade-off).
+
+        Returns
+        -------
+        list of dict
+        """
+        return [{"law": k, "log_ratio": float(np.mean(np.log(self.ratio(k, self.train)))),
+                 "switches_per_change": self.switches_per_change(k, self.train)} for k in settings()]
+
+    def best_of(self, prefix: str, constrained: bool = True) -> str:
+        """The setting of least training mean log ratio among those starting with ``prefix``.
+
+        Parameters
+        ----------
+        prefix : str
+            E.g. ``"tuned pair/band_power"``.
+        constrained : bool, optional
+            Only settings with at most :data:`MAX_SWITCHES_PER_CHANGE` (when any has).
+
+        Returns
+        -------
+        str
+        """
+        rows = [r for r in self.settings_table() if r["law"].startswith(prefix)]
+        ok = [r for r in rows if r["switches_per_change"] <= MAX_SWITCHES_PER_CHANGE] if constrained else rows
+        return min(ok or rows, key=lambda r: r["log_ratio"])["law"]
+
+    def fixed_ratio(self, name: str, draws=None) -> np.ndarray:
+        """A fixed controller's energy over the one chosen in advance's, per draw.
+
+        Parameters
+        ----------
+        name : str
+        draws : sequence of dict, optional
+
+        Returns
+        -------
+        ndarray
+        """
+        return np.array([r["fixed"][name] / self._ref(r) for r in (self.test if draws is None else draws)])
+
+    def fdsc_ratio(self, variant: str) -> np.ndarray:
+        """An FDSC variant's energy over the fixed controller chosen in advance's, per test draw.
+
+        Parameters
+        ----------
+        variant : str
+
+        Returns
+        -------
+        ndarray
+        """
+        return np.array([r["fdsc"][variant][0] / self._ref(r) for r in self.test])
+
+    def reference_ratio(self, family=None, draws=None) -> np.ndarray:
+        """The clairvoyant switching reference's energy over the fixed controller chosen in
+        advance's, per draw (the value of switching).
+
+        Parameters
+        ----------
+        family : str, optional
+            Default the one chosen on the training half.
+        draws : sequence of dict, optional
+
+        Returns
+        -------
+        ndarray
+        """
+        family = self.reference if family is None else family
+        draws = self.test if draws is None else draws
+        return np.array([r["reference"][family] / self._ref(r) for r in draws])
+
+    def share(self) -> np.ndarray:
+        """Share of the reference's log-gain over the fixed controller chosen in advance that the
+        law realizes, per test draw (NaN where the reference gains less than :data:`HEADROOM_MIN`)."""
+        law, ref = self.ratio(), self.reference_ratio()
+        out = np.full(law.size, np.nan)
+        ok = ref < 1.0 / (1.0 + HEADROOM_MIN)
+        out[ok] = np.log(law[ok]) / np.log(ref[ok])
+        return out
+
+    def control_steps(self) -> np.ndarray:
+        """The law's largest step of u at a switch over u's RMS, per test draw (0 without one)."""
+        return np.array([r["runs"][self.law][3] for r in self.test])
+
+    def meets(self) -> dict:
+        """Whether the chosen law meets the example's :data:`TARGETS`."""
+        q, t = self.ratio(), TARGETS[self.example]
+        got = {"median": float(np.median(q)), "win_rate": float(np.mean(beats(q))),
+               "p95": float(np.quantile(q, 0.95))}
+        return {"targets": t, "got": got,
+                "met": bool(got["median"] <= t["median"] and got["win_rate"] >= t["win_rate"]
+                            and got["p95"] <= t["p95"])}
+
+    def summary(self) -> dict:
+        """The record's fields (entry ``supervisor``, one example) on the test draws."""
+        q = self.ratio()
+        cand, law, real, lam, h = self.law.split("/")
+        ref = self.reference_ratio()
+        share = self.share()
+        sup, _names, _l, _h = law_supervisor(self.example, self.law, self.fixed)
+        cert = sup.certificate()
+        return {
+            "draws_test": len(self.test), "draws_train": len(self.train), "seed": self.seed,
+            "fixed_in_advance": self.fixed_in_advance,
+            "fixed_in_advance_family": self.fixed.family[self.fixed_in_advance],
+            "median_ratio_vs_fixed_in_advance": float(np.median(q)),
+            "p95_ratio_vs_fixed_in_advance": float(np.quantile(q, 0.95)),
+            "win_rate_vs_fixed_in_advance": float(np.mean(beats(q))),
+            "reference_family": self.reference,
+            "reference_median_ratio": float(np.median(ref)),
+            "reference_win_rate": float(np.mean(beats(ref))),
+            "reference_share_median": float(np.nanmedian(share)) if np.any(np.isfinite(share)) else None,
+            "draws_with_headroom": int(np.sum(np.isfinite(share))),
+            "oracle_median_ratio_vs_fixed_in_advance": float(np.median(
+                [r["oracle"] / self._ref(r) for r in self.test])),
+            "ideal_median_ratio_vs_fixed_in_advance": float(np.median(
+                [r["ideal"] / self._ref(r) for r in self.test])),
+            "fdsc_median_ratio": {v: float(np.median(self.fdsc_ratio(v))) for v in self.test[0]["fdsc"]},
+            "switches_per_change": self.switches_per_change(),
+            "largest_control_step_median": float(np.median(self.control_steps())),
+            "diverged": int(sum(r["runs"][self.law][2] for r in self.test)),
+            "certified": cert.stable,
+            "certificate": {"checks": cert.checks, "assumptions": list(cert.assumptions),
+                            "l2_bound": cert.l2_bound},
+            "meets_targets": self.meets()["met"],
+            "law": {"candidates": cand, "law": law, "realization": real, "forgetting": float(lam),
+                    "hysteresis": float(h), "decide_every": DECIDE_EVERY, "restart": RESTART, "K0": "LQR"},
+        }
+
+
+#: The candidate sets and laws in words.
+LAW_WORDS = {"gains": "the cost law over the comparator set's gains and three front points",
+             "ideal pair": "the band-power law over PassC-LF and PassC-HF",
+             "tuned pair": "gains tuned for LF- and for HF-dominated segments",
+             "tuned filtered pair": "filtered controllers tuned for LF- and for HF-dominated segments"}
+
+
+def describe(law: dict) -> str:
+    """A stored law's setting in words.
+
+    Parameters
+    ----------
+    law : dict
+        ``{"candidates", "law", ...}`` as the study stores it.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> describe({"candidates": "tuned pair", "law": "cost"})
+    'the predictive-cost law switching between gains tuned for LF- and for HF-dominated segments'
+    """
+    cand = law["candidates"]
+    if cand in ("gains", "ideal pair"):
+        return LAW_WORDS[cand]
+    kind = "predictive-cost" if law["law"] == "cost" else "band-power"
+    return f"the {kind} law switching between {LAW_WORDS[cand]}"
+
+
+def answer(full: dict) -> dict:
+    """Per example, the chapter's answer (Markdown) from the stored full study: the best law
+    against the fixed controller chosen in advance, the value of switching, the paper's FDSC.
+
+    Parameters
+    ----------
+    full : dict
+
+    Returns
+    -------
+    dict
+        ``{example: str}``.
+    """
+    from fdsc.paper.shared.prose import count, pct, times
+
+    out = {}
+    for example in ("aircraft", "generic"):
+        r = full[example]
+        t = TARGETS[example]
+        met = (r["median_ratio_vs_fixed_in_advance"] <= t["median"]
+               and r["win_rate_vs_fixed_in_advance"] >= t["win_rate"]
+               and r["p95_ratio_vs_fixed_in_advance"] <= t["p95"])
+        share = r["reference_share_median"]
+        printed = r["fdsc_median_ratio"]["FDSC"]
+        out[example] = (
+            f"the best law, {describe(r['law'])}, has a median "
+            f"{times(r['median_ratio_vs_fixed_in_advance'])} "
+            f"the energy of *{r['fixed_in_advance']}* (95th percentile "
+            f"{times(r['p95_ratio_vs_fixed_in_advance'])}, less energy on "
+            f"{pct(r['win_rate_vs_fixed_in_advance'])} of {count(r['draws_test'])} test draws); switching "
+            f"clairvoyantly at the breaks between controllers designed for each type of segment reaches a "
+            f"median {times(r['reference_median_ratio'])}"
+            + (f", of which the law realizes {pct(share)}" if share is not None else "")
+            + f". The paper's FDSC has a median {times(printed)}. "
+            + ("The targets set for a law that pays are met." if met else
+               "The targets set for a law that pays are not met."))
+    return out
+
+
+def choose(example, draws, seed, fs):
+    st = Study(example, seed, tuple(draws), fs, settings()[0], REFERENCE_FAMILIES[0])
+    law = st.best_of("")
+    ref = min(REFERENCE_FAMILIES,
+              key=lambda f: np.mean(np.log(st.reference_ratio(f, st.train))))
+    return Study(example, seed, tuple(draws), fs, law, ref)
