@@ -143,18 +143,36 @@ class Findings:
         for example, ratio in self.ideal.items():
             out[f"ideal_{example}"] = times(ratio)
         out["law_sentence"] = law_sentence(self.law)
-        def phrase(r):
-            name = r["fixed_in_advance"]
-            k = r.get("fixed_controllers", {}).get(name, {}).get("states")
-            what = "a static gain" if k == 0 else f"a controller with {k} states" if k else "a controller"
-            return f"{name}: {what} from the {r['fixed_in_advance_family']} family"
+        def states(r):
+            k = r.get("fixed_controllers", {}).get(r["fixed_in_advance"], {}).get("states")
+            return "a static gain" if k == 0 else f"{k} states" if k else "a controller"
 
-        out["law_chosen_phrase"] = "; ".join(f"on the {e}, {phrase(r)}" for e, r in self.law.items())
+        law = self.law
+        if len({r["fixed_in_advance"] for r in law.values()}) == 1:
+            name = next(iter(law.values()))["fixed_in_advance"]
+            where = {"aircraft": "the aircraft", "generic": "the generic example"}
+            out["law_chosen_phrase"] = (f"{name} on both plants, with " + " and ".join(
+                f"{states(r)} on {where.get(e, e)}" for e, r in law.items()))
+        else:
+            out["law_chosen_phrase"] = "; ".join(f"{r['fixed_in_advance']} ({states(r)}) on the {e}"
+                                                 for e, r in law.items())
+        lose = []
+        for r in law.values():
+            per = r.get("robustness", {}).get("snr_db", {})
+            bad = [float(k) for k, v in per.items() if v["median"] >= 1.0]
+            lose.append(max(bad) if bad else None)
+        out["law_noise"] = ("the gain does not survive a noisy estimate: at an SNR of "
+                            f"{min(x for x in lose if x is not None):g} dB the law loses on "
+                            + ("both plants" if all(x is not None for x in lose) else "one plant")
+                            if any(x is not None for x in lose) else
+                            "the gain survives the noisy estimates tried")
         for example, r in self.law.items():
             out |= {f"law_{example}_chosen": r["fixed_in_advance"],
                     f"law_{example}_fdsc": times(r["fdsc_median_ratio"]["FDSC"]),
                     f"law_{example}_value": times(r["reference_median_ratio"]),
-                    f"law_{example}_median": times(r["median_ratio_vs_fixed_in_advance"])}
+                    f"law_{example}_median": times(r["median_ratio_vs_fixed_in_advance"]),
+                    f"law_{example}_win": pct(r["win_rate_vs_fixed_in_advance"]),
+                    f"law_{example}_n": count(r["draws_test"])}
         bad = [f"{printed} ({verdict})" for printed, verdict in self.bounds.values()
                if verdict in _NOT]
         out["bounds_bad"] = count(len(bad))

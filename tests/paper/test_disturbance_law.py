@@ -49,7 +49,8 @@ def test_the_segments_are_mixed_as_stated():
 
 
 def _fs(chosen="B"):
-    return FixedSet("aircraft", 6, 1, 3, ("A", "B"), {}, {"A": "tuned", "B": "tuned"}, {}, {"A": 1.0, "B": 0.5},
+    return FixedSet("aircraft", 6, 1, 3, ("A", "B"), {}, {"A": "tuned", "B": "tuned"}, {},
+                    {"A": 1.0, "B": 0.5},
                     chosen, [], {}, {}, {}, {}, None)
 
 
@@ -171,7 +172,8 @@ def test_the_code_recomputes_a_stored_test_draw(example):
     i = r["test_indices"][0]
     d = runs.draw_result(example, i, full["seed"], fs)
     ref = d["fixed"][fs.chosen]
-    assert d["runs"][dl.law_key(r["law"])][0] / ref == pytest.approx(r["ratio_vs_fixed_in_advance"][0], rel=1e-6)
+    law = d["runs"][dl.law_key(r["law"])][0] / ref
+    assert law == pytest.approx(r["ratio_vs_fixed_in_advance"][0], rel=1e-6)
     for name, ratios in r["fixed_ratio"].items():
         assert d["fixed"][name] / ref == pytest.approx(ratios[0], rel=1e-6), name
     for fam, ratios in r["reference_ratio"].items():

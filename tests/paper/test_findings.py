@@ -60,26 +60,24 @@ def test_missing_entries_are_named():
 
 def test_the_law_sentence_says_whether_it_pays_and_against_what():
     from fdsc.paper.findings import law_sentence
-
-    pays = {"median_ratio_vs_fixed_in_advance": 0.6, "win_rate_vs_fixed_in_advance": 0.93,
-            "oracle_median_ratio_vs_fixed_in_advance": 0.5, "fixed_in_advance": "front 1",
-            "draws_test": 250}
-    flat = dict(pays, median_ratio_vs_fixed_in_advance=0.995, oracle_median_ratio_vs_fixed_in_advance=0.998,
-                fixed_in_advance="PassC-LF")
-    text = law_sentence({"generic": pays, "aircraft": flat})
     from fdsc.paper.shared.prose import pct
 
-    assert text.startswith("on the generic example it pays: median energy ×0.600 that of the fixed gain "
-                           f"chosen in advance (front 1), less on {pct(0.93)} of 250 test draws")
-    assert "on the aircraft example it gains little: median ×0.995" in text
-    assert "clairvoyant per-segment oracle that switches at the breaks reaches ×0.998" in text
-    # with the runs on sampled measurements: whether the gain survives them
-    variants = {"exact": {"median": 0.99}, "min_switching": {"median": 1.2}}
-    kept = {"variants": {**variants, "a": {"median": 0.7}, "b": {"median": 0.72}}}
-    lost = {"variants": {**variants, "a": {"median": 0.99}, "b": {"median": 1.01}}}
-    text = law_sentence({"generic": dict(pays, measured=kept), "aircraft": dict(flat, measured=lost)})
-    assert "test draws, and keeps it on sampled measurements (medians ×0.700–×0.720)" in text
-    assert "and loses it on sampled measurements (medians ×0.990–×1.01)" in text
+    pays = {"median_ratio_vs_fixed_in_advance": 0.96, "win_rate_vs_fixed_in_advance": 0.78,
+            "reference_median_ratio": 0.967, "fixed_in_advance": "tuned filtered", "draws_test": 250}
+    flat = dict(pays, median_ratio_vs_fixed_in_advance=1.01, win_rate_vs_fixed_in_advance=0.3)
+    text = law_sentence({"generic": pays, "aircraft": flat})
+    assert text.startswith("on the generic example it pays: the best such law has a median energy ×0.960 "
+                           f"that of the fixed controller chosen in advance (tuned filtered) and less on "
+                           f"{pct(0.78)} of 250 test draws")
+    assert "on the aircraft example it does not pay: the best such law has a median energy ×1.01" in text
+    assert "controllers designed for each type of segment reaches ×0.967" in text
+    # with the noisy estimate and the sampled measurements
+    rob = {"snr_db": {"20.0": {"median": 0.99}, "10.0": {"median": 1.12}, "0.0": {"median": 2.5}}}
+    meas = {"variants": {"exact": {"median": 0.96}, "min_switching": {"median": 3.9},
+                         "a": {"median": 0.958}, "b": {"median": 0.986}}}
+    text = law_sentence({"generic": dict(pays, robustness=rob, measured=meas)})
+    assert "with the estimate's noise at 20 dB the median is ×0.990, and from 10 dB on the law loses" in text
+    assert "its medians are ×0.958–×0.986" in text
 
 
 def test_the_law_comes_from_the_full_study_or_the_record(found):

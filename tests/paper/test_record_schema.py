@@ -63,7 +63,10 @@ def test_the_synthetic_record_is_valid(validator):
 
 def _errors(validator, record):
     """Every violation, one line each ("where: what"), so that a failure lists them all."""
-    return "\n".join(f"{'/'.join(map(str, e.absolute_path)) or '(top)'}: {e.message}"[:300]
+    def short(msg):            # a long instance is cut in the middle: the verdict is at the end
+        return msg if len(msg) <= 300 else msg[:150] + " … " + msg[-140:]
+
+    return "\n".join(short(f"{'/'.join(map(str, e.absolute_path)) or '(top)'}: {e.message}")
                      for e in validator.iter_errors(record))
 
 
@@ -140,8 +143,10 @@ def test_the_merged_entries_have_their_shape(validator):
                          "searched": {}, "time domain, equal to the printed value": [],
                          "time domain, quantities searched": 494}
     validator.validate(record)
+    more = {"every_fixed_controller": {"tuned": ["tuned"]}, "chosen_in_advance": "tuned"}
     comparators = entry("comparators", "ours", None, {"aircraft": {"names": ["open loop"], "best": {
-        "stationary": {"open loop": -1}}}, "generic": {"names": ["open loop"], "best": {}}}, "new", "n")
+        "stationary": {"open loop": -1}}, **more}, "generic": {"names": ["open loop"], "best": {}, **more}},
+        "new", "n")
     record["entries"].append(comparators)
     assert "-1 is less than the minimum of 0" in _errors(validator, record)
     comparators["recomputed"]["aircraft"]["best"]["stationary"]["open loop"] = 2
@@ -151,20 +156,29 @@ def test_the_merged_entries_have_their_shape(validator):
 def test_the_law_entries_have_their_shape(validator):
     """The Pareto front lists its points; the law's entry holds every field, per example."""
     record = synthetic_record()
-    point = {"beta": 0.4, "gamma_hf": 0.40, "gamma_lf": 0.39, "certified": True}
-    front = entry("pareto_front", "ours", None, {"aircraft": [point], "generic": []}, "new", "n")
+    point = {"beta": 0.4, "gamma_hf": 0.40, "gamma_lf": 0.39, "certified": True, "dominated_by_search": False}
+    nine = [dict(point, beta=0.4 + k) for k in range(9)]
+    front = entry("pareto_front", "ours", None, {"aircraft": nine, "generic": nine[:3]}, "new", "n")
     record["entries"].append(front)
-    assert "should be non-empty" in _errors(validator, record)
-    front["recomputed"]["generic"] = [dict(point, beta=-1.0)]
+    assert "is too short" in _errors(validator, record)              # at least nine points
+    front["recomputed"]["generic"] = [dict(point, beta=-1.0)] + nine[1:]
     assert "less than or equal to the minimum of 0" in _errors(validator, record)
-    front["recomputed"]["generic"] = [point]
+    bare = {k: v for k, v in point.items() if k != "dominated_by_search"}
+    front["recomputed"]["generic"] = [bare] + nine[1:]
+    assert "'dominated_by_search' is a required property" in _errors(validator, record)
+    front["recomputed"]["generic"] = nine
     validator.validate(record)
-    one = {"draws_test": 8, "fixed_in_advance": "PassC-LF", "median_ratio_vs_fixed_in_advance": 0.99,
-           "p95_ratio_vs_fixed_in_advance": 1.0, "win_rate_vs_fixed_in_advance": 0.75,
-           "median_ratio_vs_best_fixed_per_draw": 0.99, "oracle_share_median": None,
-           "switches_per_change": 3.0, "diverged": 0, "rho_t_ratio_vs_best_fixed": [1.0, 0.9],
-           "certified": True, "law": {"law": "cost", "realization": "copies", "forgetting": 0.2,
-                                       "hysteresis": 0.1}}
+    one = {"draws_test": 8, "fixed_in_advance": "tuned filtered", "fixed_in_advance_family": "tuned",
+           "median_ratio_vs_fixed_in_advance": 0.99, "p95_ratio_vs_fixed_in_advance": 1.0,
+           "win_rate_vs_fixed_in_advance": 0.75, "reference_family": "tuned", "reference_median_ratio": 0.98,
+           "reference_share_median": None, "fdsc_median_ratio": {"FDSC": 40.0},
+           "switches_per_change": 3.0, "largest_control_step_median": 0.5, "diverged": 0,
+           "rho_t_ratio_vs_fixed_in_advance": [1.0, 0.9], "certified": True,
+           "certificate": {"checks": {"A + B2 K0 is Hurwitz": True}, "assumptions": ["exact"],
+                           "l2_bound": 5.0},
+           "meets_targets": False,
+           "law": {"candidates": "tuned pair", "law": "cost", "realization": "copies", "forgetting": 0.2,
+                   "hysteresis": 0.1}}
     law = entry("supervisor", "ours", None, {"aircraft": one, "generic": dict(one, law={})}, "new", "n")
     record["entries"].append(law)
     assert "'law' is a required property" in _errors(validator, record)

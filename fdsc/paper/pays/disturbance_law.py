@@ -57,6 +57,7 @@ from fdsc.paper.pays.disturbance_law_study import (
     choose,
     describe,
     law_key,
+    share_words,
 )
 from fdsc.paper.pays.fixed_designs import fixed_set
 from fdsc.paper.shared.cache import cached
@@ -66,7 +67,7 @@ __all__ = ["SEED", "N_RECORD", "N_FULL", "LAMBDAS", "HYSTERESES", "DECIDE_EVERY"
            "IDEAL_PAIR", "HEADROOM_MIN", "MAX_SWITCHES_PER_CHANGE", "TARGETS", "Study", "study",
            "rho_t_family", "record_part", "full_study", "load_full", "law_key", "N_ROBUST", "ROBUST_SNR_DB",
            "robustness", "measured_robustness", "certificate", "stored_fixed_set", "answer", "describe",
-           "LAW_WORDS", "choose"]
+           "LAW_WORDS", "choose", "share_words"]
 
 #: Draws per example in the record (half train, half test).
 N_RECORD = 12

@@ -15,7 +15,7 @@ from fdsc.paper.pays.fixed_designs import FixedSet
 from fdsc.paper.shared.examples import beats
 
 __all__ = ["HEADROOM_MIN", "MAX_SWITCHES_PER_CHANGE", "TARGETS", "law_key", "Study", "LAW_WORDS", "describe",
-           "answer", "choose"]
+           "answer", "choose", "share_words"]
 
 #: The reference's least relative gain over the fixed controller chosen in advance for a draw to
 #: count in the share of it that a law realizes.
@@ -292,6 +292,44 @@ def describe(law: dict) -> str:
     return f"the {kind} law switching between {LAW_WORDS[cand]}"
 
 
+def share_words(share) -> str:
+    """The share of the reference's gain a law realizes, in words (it may exceed all of it: the
+    law also switches inside a segment).
+
+    Parameters
+    ----------
+    share : float or None
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> share_words(0.834), share_words(1.024), share_words(None)
+    ('83 %', 'all of it and more (102 %)', 'nothing measurable')
+    """
+    from fdsc.paper.shared.prose import pct
+
+    if share is None:
+        return "nothing measurable"
+    if share > 1:
+        return f"all of it and more ({round(100 * share):d} %)"
+    return pct(max(share, 0.0)) if share >= 0 else "none of it (it loses)"
+
+
+def _noise_words(rob):
+    """What a noisy estimate (the copies and the decisions on it) leaves of the gain."""
+    if not rob:
+        return ""
+    from fdsc.paper.shared.prose import times
+
+    per = rob["snr_db"]
+    top = max(per, key=float)
+    return (f"; on an estimate with noise at {float(top):g} dB its median is {times(per[top]['median'])}, "
+            f"at {float(min(per, key=float)):g} dB {times(per[min(per, key=float)]['median'])}")
+
+
 def answer(full: dict) -> dict:
     """Per example, the chapter's answer (Markdown) from the stored full study: the best law
     against the fixed controller chosen in advance, the value of switching, the paper's FDSC.
@@ -324,14 +362,32 @@ def answer(full: dict) -> dict:
             f"{pct(r['win_rate_vs_fixed_in_advance'])} of {count(r['draws_test'])} test draws); switching "
             f"clairvoyantly at the breaks between controllers designed for each type of segment reaches a "
             f"median {times(r['reference_median_ratio'])}"
-            + (f", of which the law realizes {pct(share)}" if share is not None else "")
+            + (f", of which the law realizes {share_words(share)}" if share is not None else "")
             + f". The paper's FDSC has a median {times(printed)}. "
-            + ("The targets set for a law that pays are met." if met else
-               "The targets set for a law that pays are not met."))
+            + ("It meets" if met else "It misses") + " the targets this book sets for a law that pays here "
+            + f"(median at most {times(t['median'])}"
+            + (f", less energy on at least {pct(t['win_rate'])} of the draws" if t["win_rate"] > 0 else "")
+            + (f", 95th percentile at most {times(t['p95'])}" if math.isfinite(t["p95"]) else "") + ")"
+            + _noise_words(full.get("robustness", {}).get(example)) + ".")
     return out
 
 
 def choose(example, draws, seed, fs):
+    """The study of an example from its draws: the law (under the switching limit) and the
+    reference family chosen on the training half.
+
+    Parameters
+    ----------
+    example : str
+    draws : sequence of dict
+        :func:`fdsc.paper.pays.disturbance_law_runs.draw_result` of every draw, train half first.
+    seed : int
+    fs : FixedSet
+
+    Returns
+    -------
+    Study
+    """
     st = Study(example, seed, tuple(draws), fs, settings()[0], REFERENCE_FAMILIES[0])
     law = st.best_of("")
     ref = min(REFERENCE_FAMILIES,

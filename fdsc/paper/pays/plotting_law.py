@@ -166,10 +166,10 @@ def plot_family_ratios(ratios, reference, ax=None):
     return ax
 
 
-def plot_switch_tradeoff(table, chosen, limit, ax=None):
+def plot_switch_tradeoff(table, chosen, limit, ax=None, *, top=2.0):
     """Every law setting on the training draws: energy against switches per change of the
     dominating band, one marker per candidate set and law; the switching limit and the chosen
-    setting marked.
+    setting marked. Settings above ``top`` are left off the axes (named in the returned list).
 
     Parameters
     ----------
@@ -178,10 +178,12 @@ def plot_switch_tradeoff(table, chosen, limit, ax=None):
     chosen : str
     limit : float
     ax : Axes, optional
+    top : float, optional
+        The axis' upper end (geometric-mean ratio).
 
     Returns
     -------
-    Axes
+    (Axes, list of str)
     """
     ax = _axes(ax, (7, 4))
     groups = {}
@@ -190,20 +192,29 @@ def plot_switch_tradeoff(table, chosen, limit, ax=None):
         groups.setdefault(f"{cand}, {law.replace('_', '-')} law", []).append(row)
     marks = ("o", "s", "^", "D", "v", "P")
     colors = ("0.45", "goldenrod", "tab:blue", "tab:cyan", "darkgreen", "#1b9e77")
+    off, low = [], []
     for k, (label, rows) in enumerate(groups.items()):
-        ax.plot([r["switches_per_change"] for r in rows], [np.exp(r["log_ratio"]) for r in rows],
-                ls="none", marker=marks[k % len(marks)], color=colors[k % len(colors)], label=label)
+        keep = [r for r in rows if np.exp(r["log_ratio"]) <= top]
+        if len(keep) < len(rows):
+            off.append(label)
+        if not keep:
+            continue
+        low += [np.exp(r["log_ratio"]) for r in keep]
+        ax.plot([r["switches_per_change"] for r in keep], [np.exp(r["log_ratio"]) for r in keep],
+                ls="none", marker=marks[k % len(marks)], color=colors[k % len(colors)], ms=6, label=label)
     pick = next(r for r in table if r["law"] == chosen)
     ax.plot(pick["switches_per_change"], np.exp(pick["log_ratio"]), ls="none", marker="o", ms=14,
             mfc="none", mec="tab:red", mew=1.5, label="chosen")
     ax.axvline(limit, color="tab:red", lw=0.8, ls="--")
     ax.axhline(1.0, color="0.3", lw=0.8)
     ax.set_xscale("symlog", linthresh=1.0)
+    ax.set_xlim(left=0)
+    ax.set_ylim(0.98 * min(low + [1.0]), top)
     ax.set_xlabel("switches per change of the dominating band [-]")
     ax.set_ylabel("geometric-mean energy ratio [-]")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7, loc="best")
-    return ax
+    ax.legend(fontsize=8, loc="upper right")
+    return ax, off
 
 
 def plot_law_rho_t(entries, ax=None):
