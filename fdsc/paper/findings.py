@@ -69,9 +69,9 @@ class Findings:
     bounds : dict
         ``{printed bound entry: (printed value, verdict)}``.
     q_gammas : tuple of float
-        γ_1, γ_2 that Theorem 1 certifies with the printed Q's.
+        γ_1, γ_2 for which Theorem 1's LMIs are feasible with the printed Q's.
     thm1_feasible, thm1_diverging : int
-        Mode pairs of the counterexample search that Theorem 1 certifies, and those of them that
+        Mode pairs of the counterexample search for which Theorem 1's LMIs are feasible, and those that
         diverge under the printed law (measured ẋ).
     law : dict
         ``{example: summary}`` of the law on the disturbance estimate on the test draws of the
