@@ -6,6 +6,7 @@ where their ``__module__`` points.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -84,6 +85,24 @@ def _spectral_radius(M):
     return np.abs(np.linalg.eigvals(M)).max(axis=-1)
 
 
+def _log_expm(a, tau):
+    """``(F, g)`` with ``e^{aτ} = e^g F`` and ‖F‖ = 1 (Frobenius): e^{aτ/2^k} with
+    ‖a‖₁τ/2^k ≤ 1, squared k times with the norm moved into g at each squaring."""
+    norm = float(np.abs(a).sum(axis=0).max()) * tau
+    k = max(0, math.ceil(math.log2(norm))) if norm > 1 else 0
+    F, g = expm(a * (tau / 2.0**k)), 0.0
+    for _ in range(k + 1):
+        s = float(np.linalg.norm(F))
+        if not (s > 0 and math.isfinite(s)):
+            raise ValueError(f"taus must be short enough for e^(A_i tau) to be represented, but at "
+                             f"tau = {tau:g} s a mode's exponential, even normalized, spans more than "
+                             "the float range (its entries' ratio); shorten the largest dwell")
+        F, g = F / s, g + math.log(s)
+        if _ < k:
+            F, g = F @ F, 2.0 * g
+    return F, g
+
+
 def _suffix_max(R):
     """S[a, b] = max of R[a:, b:]."""
     S = np.maximum.accumulate(np.maximum.accumulate(R[::-1, ::-1], axis=0), axis=1)
@@ -138,16 +157,36 @@ def periodic_dwell_margin(modes, taus) -> PeriodicDwellMargin:
     taus = as_vector("taus", taus)
     if taus.size == 0 or taus[0] <= 0 or np.any(np.diff(taus) <= 0):
         raise ValueError(f"taus must be positive and strictly increasing, but found {taus}")
-    # one call per matrix: scipy's batched expm is slow for the large ‖Aτ‖ of stiff modes
-    E = [np.array([expm(a * tau) for tau in taus]) for a in A]
-    M = E[0]
-    for e in E[1:]:
-        M = e @ M
-    rho = _spectral_radius(M)
-    growth = np.log(rho) / (len(A) * taus)
+    with np.errstate(all="ignore"):
+        try:
+            # one call per matrix: scipy's batched expm is slow for the large ‖Aτ‖ of stiff modes
+            E = [np.array([expm(a * tau) for tau in taus]) for a in A]
+            logs = [np.zeros(taus.size) for _ in A]
+            clean = all(np.all(np.isfinite(e)) for e in E)
+        except (ValueError, np.linalg.LinAlgError, OverflowError):
+            clean = False
+        M = E[0] if clean else None
+        for e in E[1:] if clean else []:
+            M = e @ M
+        clean = clean and bool(np.all(_spectral_radius(M) > 0))
+        if not clean:
+            # a τ so long that e^{Aτ} leaves the float range: each factor as a normalized matrix
+            # times e^{log}, by squaring (so ρ and its growth rate come out in log space)
+            pairs = [[_log_expm(a, tau) for tau in taus] for a in A]
+            E = [np.array([f for f, _ in p]) for p in pairs]
+            logs = [np.array([g for _, g in p]) for p in pairs]
+            M = E[0]
+            for e in E[1:]:
+                M = e @ M
+        log_rho = np.log(_spectral_radius(M)) + sum(logs)
+        rho = np.exp(log_rho)
+    growth = log_rho / (len(A) * taus)
     if len(A) == 2:
-        R = _spectral_radius(np.einsum("bij,ajk->abik", E[1], E[0]))
-        G = np.log(R) / (taus[:, None] + taus[None, :])
+        with np.errstate(all="ignore"):
+            R = _spectral_radius(np.einsum("bij,ajk->abik", E[1], E[0]))
+            log_R = np.log(R) + logs[1][:, None] + logs[0][None, :]
+            R = np.exp(log_R)
+        G = log_R / (taus[:, None] + taus[None, :])
         rho_worst = np.diagonal(_suffix_max(R)).copy()
         growth_worst = np.diagonal(_suffix_max(G)).copy()
     else:

@@ -45,7 +45,17 @@ from ._blocks import Grid, _pair, pieces
 from ._defaults import DEFAULT_MAX_MEMORY
 from ._simulate_kernel import check_resolved
 from ._validation import as_choice, as_matrix, as_nonnegative, as_positive, as_vector, check_type
-from .decisions import SupervisedRun, _bank_starts, _input_energy, _n_blocks, _older_bank, _schedule
+from .decisions import (
+    SupervisedRun,
+    _bank_starts,
+    _input_energy,
+    _n_blocks,
+    _older_bank,
+    _scale_exponent,
+    _scaled,
+    _schedule,
+    _unscale,
+)
 from .exceptions import EnergyOverflowError, MemoryLimitError, UnstableError, UnstableRunWarning
 from .signals import Piecewise, Sinusoids
 
@@ -146,6 +156,11 @@ def run_measured(sup, d, horizon, dt, *, derivative, true_A, x0, forgetting, hys
     n_plant = n
     if any(c.n_states for c in sup.candidates):
         sup, A_t, x0 = _augmented(sup, A_t, x0)
+    # the run scaled by a power of two (as fdsc.prepared.Prepared's): linear in (x0, d), ŵ
+    # floored relative to its own terms and the law's hysteresis relative, so the decisions do
+    # not depend on the scale, and the results are the scaled ones times 2^e (2^2e energies)
+    scale = _scale_exponent(x0, d)
+    d, x0 = _scaled(d, scale), np.ldexp(x0, -scale)
     A_modes, B_modes = modes(sup, A_t)
     worst = max(float(np.max(np.linalg.eigvals(M).real)) for M in A_modes)
     if worst >= 0:
@@ -176,18 +191,27 @@ def run_measured(sup, d, horizon, dt, *, derivative, true_A, x0, forgetting, hys
     if over.size:
         diverged = float((over[0] + 1) * sup.decide_every)
         bound = limit / _divergence.SAFETY
+        with np.errstate(over="ignore"):
+            shown = float(np.ldexp(bound, scale))
         warnings.warn(_divergence.message("run_measured: ", diverged, float(big[over[0]]) / bound,
-                                          bound), UnstableRunWarning, stacklevel=3)
+                                          shown), UnstableRunWarning, stacklevel=3)
     elif not np.all(np.isfinite(e)):
         raise EnergyOverflowError("run_measured: the state stays finite but the energy exceeds the "
                                   "float range (about 1.8e308): scale the disturbance (or x0) down")
     points = np.arange(nb + 1) * sup.decide_every
     points[-1] = horizon
     share = np.bincount(sigma, minlength=nm) / sigma.size
-    input_energy = _input_energy(Grid(d, np.array([0.0, horizon])))
-    return SupervisedRun(horizon, dt, float(e.sum()), input_energy,
-                         change * sup.decide_every, np.r_[sigma[:1], sigma[change]], share, x[:n_plant],
-                         points, mu, diverged)
+    where = "run_measured: "
+    input_energy = _unscale(_input_energy(Grid(d, np.array([0.0, horizon]))), scale, where=where,
+                            what="the disturbance's energy ∫d²")
+    energy = float(e.sum()) if diverged is not None else _unscale(float(e.sum()), scale, where=where)
+    with np.errstate(over="ignore"):                    # a diverged run has warned
+        x = np.ldexp(x[:n_plant], scale)
+        if diverged is not None:
+            energy = float(np.ldexp(energy, 2 * scale))
+    mu = _unscale(mu, scale, where=where, what="a monitoring signal")
+    return SupervisedRun(horizon, dt, energy, input_energy, change * sup.decide_every,
+                         np.r_[sigma[:1], sigma[change]], share, x, points, mu, diverged)
 
 
 def _augmented(sup, A_true, x0):

@@ -13,7 +13,7 @@ import numpy as np
 from numba import njit
 
 from ._validation import as_nonnegative
-from .exceptions import EnergyOverflowError
+from .exceptions import EnergyOverflowError, MemoryLimitError
 
 __all__ = ["SupervisedRun"]
 
@@ -131,6 +131,89 @@ def _decide(cost, n_blocks, q, first, dwell, h):
                 last = k
         sigma[k] = q
     return sigma
+
+
+#: The engines of the law on the estimate run scaled by a power of two when the largest entry of
+#: the disturbance, its estimate or x0 lies outside [2^−SCALE_RANGE, 2^SCALE_RANGE]: their energies
+#: (quadratic) and monitoring signals then stay far from the float range's ends.
+SCALE_RANGE = 200
+
+
+def _largest(d) -> float:
+    """The largest amplitude of a signal (Sinusoids, or Piecewise of them)."""
+    from .signals import Piecewise, Sinusoids
+
+    if isinstance(d, Sinusoids):
+        return float(np.max(np.abs(d.amplitudes))) if np.size(d.amplitudes) else 0.0
+    if isinstance(d, Piecewise):
+        return max([0.0] + [_largest(p) for p in d.parts])
+    return 0.0
+
+
+def _scale_exponent(x0, *signals) -> int:
+    """The exponent e by which an engine of the law runs scaled (x0 and the signals times 2^−e):
+    0 unless the largest of their entries lies outside [2^−SCALE_RANGE, 2^SCALE_RANGE], else the
+    one that brings it into [½, 1).
+
+    The runs are linear in (x0, d, ŵ), the monitoring signals and energies quadratic, and the law
+    compares monitoring signals relative to each other (relative hysteresis; ŵ below the rounding
+    of its own terms counts as 0), so a run scaled by a power of two takes the same decisions and
+    its results are the unscaled ones times 2^−e (states) and 2^−2e (energies), exactly.
+    """
+    mags = [float(np.max(np.abs(x0))) if np.size(x0) else 0.0]
+    mags += [_largest(s) for s in signals if s is not None]
+    mag = max(mags)
+    if mag == 0.0 or 2.0 ** -SCALE_RANGE <= mag <= 2.0 ** SCALE_RANGE:
+        return 0
+    return math.frexp(mag)[1]
+
+
+def _scaled(d, e):
+    """The signal ``d`` times 2^−e (``d`` itself for e = 0 or None)."""
+    from .signals import Piecewise, Sinusoids
+
+    if e == 0 or d is None:
+        return d
+    if isinstance(d, Sinusoids):
+        return Sinusoids(np.ldexp(d.amplitudes, -e), d.frequencies, d.phases)
+    return Piecewise(d.breaks, [_scaled(p, e) for p in d.parts])
+
+
+def _unscale(value, e, power=2, where="", what="the energy"):
+    """``value`` times 2^(power·e) (an energy: power 2; a state: power 1), refused by name if it
+    leaves the float range there."""
+    if e == 0:
+        return value
+    with np.errstate(over="ignore"):
+        out = np.ldexp(value, power * e)
+    if np.all(np.isfinite(value)) and not np.all(np.isfinite(out)):
+        raise EnergyOverflowError(f"{where}{what} exceeds the float range (about 1.8e308) in the "
+                                  "disturbance's units: scale the disturbance (or x0) down")
+    return float(out) if np.ndim(out) == 0 else out
+
+
+def _check_memory(sup, d, estimate, nb, where="prepare"):
+    """Refuse by name a run whose exact engine would allocate more than DEFAULT_MAX_MEMORY: per
+    step of the grid (a decision interval, cut at the breaks of d and ŵ) its edges, oscillators
+    and energies, per decision interval the monitors' energies of two banks."""
+    from ._defaults import DEFAULT_MAX_MEMORY
+    from .signals import Piecewise
+
+    def count(s):
+        if s is None:
+            return 0, 0
+        if isinstance(s, Piecewise):
+            return len(s.breaks), max([int(np.size(p.amplitudes)) for p in s.parts] + [0])
+        return 0, int(np.size(s.amplitudes))
+
+    (bd, td), (be, te) = count(d), count(estimate)
+    steps = float(nb) + bd + be
+    need = 8.0 * steps * (2 * (td + te) + 8 + 4 * len(sup.gains))
+    if need > DEFAULT_MAX_MEMORY:
+        raise MemoryLimitError(f"{where}: {nb} decision intervals (horizon / decide_every) need about "
+                               f"{need / 2**30:.3g} GiB, more than the limit of "
+                               f"{DEFAULT_MAX_MEMORY / 2**30:.3g} GiB; shorten the horizon or raise "
+                               "decide_every")
 
 
 def _dummy_input():

@@ -24,6 +24,7 @@ need; it is the book's certified negative control for the laws of :mod:`fdsc.sup
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import cvxpy as cp
@@ -66,18 +67,23 @@ class MinSwitchingCertificate:
         object.__setattr__(self, "max_eigs", frozen_array(self.max_eigs))
 
     def law_weights(self) -> list:
-        """``W_i = diag(0, −P_i)`` on ``[ẋ; x]``: the law as ``law_weights`` of
+        """``W_i = diag(0, −P_i) / 2^k`` on ``[ẋ; x]``: the law as ``law_weights`` of
         :func:`fdsc.simulate_stream` (whose law picks the largest score).
+
+        The P_i are divided by one power of two 2^k that brings their largest entry into
+        [½, 1): the law does not change (it compares the forms with each other), and the
+        simulator's scores stay far from the float range's ends whatever the P_i's scale.
 
         Returns
         -------
         list of (2n, 2n) ndarray
         """
         n = self.P[0].shape[0]
+        k = _exponent(max(float(np.max(np.abs(p))) for p in self.P))
         out = []
         for p in self.P:
             W = np.zeros((2 * n, 2 * n))
-            W[n:, n:] = -p
+            W[n:, n:] = -np.ldexp(p, -k)
             out.append(W)
         return out
 
@@ -98,7 +104,16 @@ class MinSwitchingCertificate:
             If x is not a finite vector of the loops' size.
         """
         x = np.array(as_vector("x", x, self.P[0].shape[0]))
-        return int(np.argmin([x @ p @ x for p in self.P]))
+        # the law does not depend on the norm of x nor on a common scale of the P_i: both are
+        # normalized by powers of two (exact), so that the forms neither overflow nor underflow
+        x = np.ldexp(x, -_exponent(float(np.max(np.abs(x)))))
+        k = _exponent(max(float(np.max(np.abs(p))) for p in self.P))
+        return int(np.argmin([x @ np.ldexp(p, -k) @ x for p in self.P]))
+
+
+def _exponent(largest: float) -> int:
+    """The power of two that brings ``largest`` into [½, 1) (0 for 0)."""
+    return math.frexp(largest)[1] if largest > 0 else 0
 
 
 def _blocks(loops, P, Pi, rho2):

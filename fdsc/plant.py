@@ -303,8 +303,9 @@ def as_plant(plant: "Plant | control.StateSpace | tuple", name: str = "plant", *
     name : str, optional
         Name of the argument, for error messages.
     n_disturbances : int, optional
-        Number of disturbance inputs of a ``StateSpace`` plant (required for one, ignored
-        otherwise: a StateSpace does not say which inputs are controls).
+        Number of disturbance inputs of a ``StateSpace`` plant (required for one: a StateSpace
+        does not say which inputs are controls); for a Plant or a tuple it may be given and
+        must then equal B1's columns.
 
     Returns
     -------
@@ -316,8 +317,9 @@ def as_plant(plant: "Plant | control.StateSpace | tuple", name: str = "plant", *
         If ``plant`` is none of the accepted types, or a StateSpace comes without
         ``n_disturbances``.
     ValueError
-        If ``n_disturbances`` leaves no disturbance or no control input, if a python-control
-        system is discrete-time, or if an entry is not finite and real.
+        If ``n_disturbances`` leaves no disturbance or no control input or contradicts a
+        Plant's B1, if a python-control system is discrete-time, or if an entry is not finite
+        and real.
     DimensionError
         If the matrices do not fit together.
 
@@ -330,6 +332,13 @@ def as_plant(plant: "Plant | control.StateSpace | tuple", name: str = "plant", *
     >>> p.B1.shape, p.B2.shape, p.D2.ravel().tolist()
     ((2, 1), (2, 1), [0.0, 1.0])
     """
+    if isinstance(plant, Plant | tuple | list) and n_disturbances is not None:
+        k = as_count("n_disturbances", n_disturbances)
+        have = plant.B1.shape[1] if isinstance(plant, Plant) else np.shape(plant[1])[-1] if \
+            len(plant) == 6 and np.ndim(plant[1]) == 2 else k
+        if k != have:
+            raise ValueError(f"n_disturbances must match the plant's {have} disturbance input(s) "
+                             f"(B1's columns) or be left out, but found {k}")
     if isinstance(plant, Plant):
         return plant
     if isinstance(plant, LTISystem):

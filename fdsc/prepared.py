@@ -13,69 +13,28 @@ import warnings
 import numpy as np
 
 from . import _divergence
+from ._grid_run import STIFF_STEP, shift_signal
 from ._validation import as_nonnegative, as_positive, as_vector, check_type
 from .decisions import (
     SupervisedRun,
     _abcd,
     _bank_starts,
+    _check_memory,
     _check_mu,
     _decide,
     _fading,
     _input_energy,
     _n_blocks,
     _older_bank,
+    _scale_exponent,
+    _scaled,
     _schedule,
+    _unscale,
 )
 from .exceptions import DimensionError, EnergyOverflowError, UnstableRunWarning
 from .signals import Piecewise, Sinusoids
 
 __all__ = ["Prepared", "shift_signal", "STIFF_STEP"]
-
-#: A stepped run (``supervise(dt=...)``) warns when a loop's fastest mode λ has |λ| dt above this:
-#: the transients at the switches are then shorter than a step.
-STIFF_STEP = 0.5
-
-
-def shift_signal(d, tau: float):
-    """The signal ``t ↦ d(t + τ)``: tones with their phases advanced by ωτ, breaks moved by −τ.
-
-    Parameters
-    ----------
-    d : Sinusoids or Piecewise
-    tau : float
-        The shift in s.
-
-    Returns
-    -------
-    Sinusoids or Piecewise
-
-    Raises
-    ------
-    TypeError
-        If ``d`` is neither.
-    ValueError
-        If ``tau`` is not a finite real number.
-
-    Examples
-    --------
-    >>> d = Sinusoids([1.0], [2.0])
-    >>> bool(np.isclose(shift_signal(d, 0.5)([1.0])[0], d([1.5])[0], rtol=1e-14))
-    True
-    >>> p = Piecewise([0.0, 1.0, 3.0], [d, Sinusoids([1.0], [5.0])])
-    >>> np.allclose(shift_signal(p, 0.5)([0.2, 0.7, 2.0]), p([0.7, 1.2, 2.5]), rtol=1e-14)
-    True
-    """
-    if isinstance(tau, bool) or not isinstance(tau, int | float | np.integer | np.floating) \
-            or not math.isfinite(tau):
-        raise ValueError(f"tau must be a finite real number of seconds, but found {tau!r}")
-    tau = float(tau)
-    if isinstance(d, Sinusoids):
-        return Sinusoids(d.amplitudes, d.frequencies, d.phases + d.frequencies * tau)
-    if isinstance(d, Piecewise):
-        # the parts are evaluated at absolute time: each is shifted too
-        return Piecewise(np.asarray(d.breaks) - tau, [shift_signal(p, tau) for p in d.parts])
-    raise TypeError(f"d must be an fdsc.Sinusoids or fdsc.Piecewise, but found {type(d).__name__}")
-
 
 class Prepared:
     """A :class:`Supervisor` prepared for one disturbance (see :meth:`Supervisor.prepare`).
@@ -98,6 +57,17 @@ class Prepared:
         Whether the copies and the candidates that read ŵ run on ``estimate`` (default) or on
         ``d`` (see :meth:`Supervisor.prepare`).
 
+    Notes
+    -----
+    Scale: the runs are linear in (x0, d, ŵ) and the law compares its monitoring signals
+    relative to each other, so the engine runs scaled by a power of two whenever the largest
+    entry of the disturbance, its estimate or x0 lies outside [2^−200, 2^200]
+    (:data:`fdsc.decisions.SCALE_RANGE`): the monitors by the estimate's own power, the runs by
+    that of (x0, d, ŵ). Decisions then do not depend on the disturbance's scale across the
+    float range, and every result is given in the disturbance's units (states times 2^e,
+    energies and monitoring signals times 2^2e, exactly); a result that those units cannot
+    represent raises :class:`~fdsc.exceptions.EnergyOverflowError` by name.
+
     Raises
     ------
     TypeError
@@ -115,12 +85,19 @@ class Prepared:
         n = sup.plant.n_states
         self.sup, self.d, self.horizon, self.n_blocks = sup, d, float(horizon), nb
         self.x0 = np.zeros(n) if x0 is None else np.array(as_vector("x0", x0, n))
-        self.points = np.arange(nb + 1) * sup.decide_every
-        self.points[-1] = horizon
-        g = self.grid = Grid(d, self.points)
         if estimate is not None:
             check_type("estimate", estimate, Sinusoids | Piecewise, "an fdsc.Sinusoids or fdsc.Piecewise")
-        gm = g if estimate is None else Grid(estimate, self.points)
+        _check_memory(sup, d, estimate, nb)
+        self.points = np.arange(nb + 1) * sup.decide_every
+        self.points[-1] = horizon
+        # power-of-two scaling (Notes): the monitors by ŵ's exponent, the runs by (x0, d, ŵ)'s
+        self._em = _scale_exponent(np.zeros(0), d if estimate is None else estimate)
+        self._e = _scale_exponent(self.x0, d, estimate)
+        self._d, self._est = _scaled(d, self._e), _scaled(estimate, self._e)
+        self._x0 = np.ldexp(self.x0, -self._e)
+        g = self.grid = Grid(self._d, self.points)
+        gm = (Grid(_scaled(d, self._em), self.points) if estimate is None and self._em != self._e
+              else g if estimate is None else Grid(_scaled(estimate, self._em), self.points))
         # the monitors' energies per decision interval, for each bank of restarts
         self.starts = _bank_starts(nb, sup.restart_blocks)
         self.E = np.zeros((2, nb, len(sup.monitors)))
@@ -142,19 +119,25 @@ class Prepared:
             raise EnergyOverflowError("prepare: a monitor's energy is not finite (a candidate's "
                                       "loop, or the disturbance's scale, is beyond what floats "
                                       "integrate: its energy exceeds about 1e308)")
-        self.input_energy = _input_energy(g)
+        self.input_energy = _unscale(_input_energy(g), self._e, where="prepare: ",
+                                     what="the disturbance's energy ∫d²")
         # the controller as built: the copies (and whatever reads ŵ) run on the estimate
         self.two_signals = estimate is not None and copies_on_estimate and sup.reads_estimate
         if self.two_signals:
-            g = self.grid = Grid(d, self.points, estimate=estimate)
+            g = self.grid = Grid(self._d, self.points, estimate=self._est)
         self.estimate, self.two_signals_asked = estimate, copies_on_estimate
         self.loops = sup.switched_loops(estimate_input=self.two_signals)
         static = all(c.is_static for c in sup.candidates)
-        if shared is not None and static and sup.K0 is None and estimate is None:
+        if shared is not None and static and sup.K0 is None and estimate is None and gm is g:
             self.tables = shared
         else:
             self.tables = g.tables([_abcd(lp) for lp in self.loops])
         self.xstart = sup.start(self.x0)
+        self._xstart = sup.start(self._x0)
+
+    def _energy(self, value, where, what="the energy"):
+        """A run's energy in the disturbance's units (refused by name beyond the float range)."""
+        return _unscale(float(value), self._e, where=f"{where}: ", what=what)
 
     def with_K0(self, K0) -> Prepared:
         """The same disturbance and monitors with another realization (only the switched loops'
@@ -181,10 +164,11 @@ class Prepared:
         new.sup = sup
         new.two_signals = self.estimate is not None and self.two_signals_asked and sup.reads_estimate
         if new.two_signals != self.two_signals:
-            new.grid = Grid(self.d, self.points, estimate=self.estimate if new.two_signals else None)
+            new.grid = Grid(self._d, self.points, estimate=self._est if new.two_signals else None)
         new.loops = sup.switched_loops(estimate_input=new.two_signals)
         new.tables = new.grid.tables([_abcd(lp) for lp in new.loops])
         new.xstart = sup.start(new.x0)
+        new._xstart = sup.start(new._x0)
         new._u = None                                   # the control's tables are the realization's
         return new
 
@@ -200,7 +184,18 @@ class Prepared:
         Returns
         -------
         (n_blocks + 1, I) ndarray
+            In the units of ŵ² s (see the class's Notes on scale; :meth:`run` decides on the
+            scaled signals, so its decisions hold even where these underflow).
+
+        Raises
+        ------
+        EnergyOverflowError
+            If a monitoring signal exceeds the float range in the disturbance's units.
         """
+        return _unscale(self._mu(forgetting), self._em, where="mu: ", what="a monitoring signal")
+
+    def _mu(self, forgetting):
+        """:meth:`mu` in the monitors' scaled units."""
         lam = as_positive("forgetting", forgetting)
         decay = math.exp(-lam * self.sup.decide_every)
         nb = self.n_blocks
@@ -226,7 +221,6 @@ class Prepared:
         -------
         (n_blocks,) int ndarray
         """
-        h = as_nonnegative("hysteresis", hysteresis)
         nm = len(self.sup.gains)
         mu = np.asarray(mu)
         if mu.shape != (self.n_blocks + 1, nm) or not np.issubdtype(mu.dtype, np.floating):
@@ -235,6 +229,12 @@ class Prepared:
                              f"{mu.dtype} of shape {mu.shape}")
         if not np.all(np.isfinite(mu)) or np.any(mu < 0):
             raise ValueError("mu must hold finite, non-negative monitoring signals")
+        return self._decide(np.ldexp(mu, -2 * self._em), hysteresis, warmup, min_dwell, sigma0)
+
+    def _decide(self, mu, hysteresis, warmup, min_dwell, sigma0):
+        """:meth:`decide` on the monitors' scaled signals."""
+        h = as_nonnegative("hysteresis", hysteresis)
+        nm = len(self.sup.gains)
         first, dwell = _schedule(self.n_blocks, self.sup.decide_every, warmup, min_dwell, sigma0, nm)
         # the cost law compares μ (least wins); the band-power law compares 1/μ (largest μ wins)
         with np.errstate(divide="ignore"):
@@ -276,10 +276,10 @@ class Prepared:
             raise ValueError(f"sigma must hold candidate indices in [0, {len(self.loops)}), but "
                              f"found {int(sigma.min())} to {int(sigma.max())}")
         sigma = sigma.astype(np.int64)
-        e, big, x = g.run(self.tables, sigma[g.block], False, self.xstart)
+        e, big, x = g.run(self.tables, sigma[g.block], False, self._xstart)
         change = np.flatnonzero(np.diff(sigma)) + 1
         # the divergence monitor's rule (fdsc._divergence) at the switches and at the end
-        limit = _divergence.threshold([lp.A for lp in self.loops], self.loops[0].B, self.xstart, self.d)
+        limit = _divergence.threshold([lp.A for lp in self.loops], self.loops[0].B, self._xstart, self._d)
         ends = np.r_[np.searchsorted(g.block, change) - 1, e.size - 1]
         ends = ends[ends >= 0]
         over = np.flatnonzero(big[ends] > limit)
@@ -291,14 +291,17 @@ class Prepared:
             s = int(ends[over[0]]) if over.size else int(np.flatnonzero(~np.isfinite(e))[0])
             diverged = float(g.edges[s + 1])
             bound = limit / _divergence.SAFETY
-            warnings.warn(_divergence.message(f"{where}: ", diverged, float(big[s]) / bound, bound),
+            with np.errstate(over="ignore"):
+                shown = float(np.ldexp(bound, self._e))
+            warnings.warn(_divergence.message(f"{where}: ", diverged, float(big[s]) / bound, shown),
                           UnstableRunWarning, stacklevel=3)
         seq = np.r_[sigma[:1], sigma[change]]
         share = np.bincount(sigma, minlength=len(self.loops)) / sigma.size
-        return SupervisedRun(self.horizon, None, float(e.sum()), self.input_energy,
-                             change * self.sup.decide_every, seq, share,
-                             x[:self.sup.plant.n_states], self.points, np.zeros((0, len(self.loops))),
-                             diverged)
+        with np.errstate(over="ignore"):                  # a diverged run has warned
+            x = np.ldexp(x[:self.sup.plant.n_states], self._e)
+        return SupervisedRun(self.horizon, None, self._energy(e.sum(), where), self.input_energy,
+                             change * self.sup.decide_every, seq, share, x, self.points,
+                             np.zeros((0, len(self.loops))), diverged)
 
     def run(self, *, forgetting: float = 0.5, hysteresis: float = 0.2, warmup: float = 0.0,
             min_dwell: float = 0.0, sigma0: int = 0) -> SupervisedRun:
@@ -324,10 +327,11 @@ class Prepared:
         -------
         SupervisedRun
         """
-        mu = self.mu(forgetting)
+        mu = self._mu(forgetting)
         _check_mu(mu, "run")
-        sigma = self.decide(mu, hysteresis=hysteresis, warmup=warmup, min_dwell=min_dwell, sigma0=sigma0)
+        sigma = self._decide(mu, hysteresis, warmup, min_dwell, sigma0)
         r = self.run_sequence(sigma)
+        mu = _unscale(mu, self._em, where="run: ", what="a monitoring signal")
         return SupervisedRun(r.horizon, r.dt, r.energy, r.input_energy, r.switch_times, r.sequence,
                              r.time_share, r.x_final, self.points, mu, r.diverged_at)
 
@@ -354,22 +358,23 @@ class Prepared:
             self._u = (maps, g.tables([(lp.A, lp.B, Ku, Du)
                                        for lp, (Ku, Du) in zip(self.loops, maps, strict=True)]))
         maps, u_tables = self._u
-        e, _big, _x = g.run(u_tables, sigma[g.block], False, self.xstart)
+        e, _big, _x = g.run(u_tables, sigma[g.block], False, self._xstart)
         change = np.flatnonzero(np.diff(sigma)) + 1
         at = np.searchsorted(g.block, change)             # the first step of each new candidate
-        x, jumps, start = self.xstart.copy(), [], 0
-        sig = self.d if not self.two_signals else self.estimate
+        x, jumps, start = self._xstart.copy(), [], 0
         for k, s in zip(change, at, strict=True):
             _e, _b, x = g.run(self.tables, sigma[g.block], False, x, start, s)
             t = float(g.edges[s])
-            w = np.atleast_1d(np.asarray(self.d([t]), dtype=float)).ravel()
+            w = np.atleast_1d(np.asarray(self._d([t]), dtype=float)).ravel()
             if self.two_signals:
-                w = np.r_[w, np.atleast_1d(np.asarray(sig([t]), dtype=float)).ravel()]
+                w = np.r_[w, np.atleast_1d(np.asarray(self._est([t]), dtype=float)).ravel()]
             (Kq, Dq), (Kp, Dp) = maps[sigma[k - 1]], maps[sigma[k]]
             jumps.append(float(np.linalg.norm((Kp - Kq) @ x + (Dp - Dq) @ w)))
             start = s
-        return {"jumps": np.array(jumps), "rms": float(np.sqrt(e.sum() / self.horizon)),
-                "times": change * sup.decide_every}
+        with np.errstate(over="ignore"):
+            jumps = np.ldexp(np.array(jumps), self._e)
+            rms = float(np.ldexp(np.sqrt(e.sum() / self.horizon), self._e))
+        return {"jumps": jumps, "rms": rms, "times": change * sup.decide_every}
 
     def fixed(self, i: int) -> float:
         """∫zᵀz of one candidate held throughout, from x0 (by the same exact engine).
@@ -423,7 +428,7 @@ class Prepared:
             two = self.estimate is not None and self.two_signals_asked and loop.reads_estimate
             loop = loop.closed_loop(self.sup.plant, estimate_input=two)
             if two and not self.two_signals:
-                g = Grid(self.d, self.points, estimate=self.estimate)
+                g = Grid(self._d, self.points, estimate=self._est)
         n = self.x0.size
         if loop.A.shape[0] < n or loop.B.shape[1] != (2 if g.channels is not None and
                                                           loop.B.shape[1] == 2 else 1):
@@ -432,11 +437,11 @@ class Prepared:
         worst = float(np.max(np.linalg.eigvals(loop.A).real))
         if worst >= 0:
             raise ValueError(f"loop must be stable, but A has an eigenvalue with real part {worst:.4g}")
-        x0 = np.r_[self.x0, np.zeros(loop.A.shape[0] - n)]
+        x0 = np.r_[self._x0, np.zeros(loop.A.shape[0] - n)]
         e = float(g.run(g.tables([_abcd(loop)]), 0, False, x0)[0].sum())
         if not math.isfinite(e):
             raise EnergyOverflowError("energy_of: the energy exceeds the float range (about 1.8e308)")
-        return e
+        return self._energy(e, "energy_of")
 
     def piece_steps(self) -> list:
         """The steps of every piece of d (zero stretches included).
@@ -467,7 +472,7 @@ class Prepared:
         ValueError
             If ``choice`` does not name one candidate per piece.
         """
-        g, x, total = self.grid, self.xstart.copy(), 0.0
+        g, x, total = self.grid, self._xstart.copy(), 0.0
         spans = self.piece_steps()
         if isinstance(choice, str) or not hasattr(choice, "__len__"):
             raise TypeError(f"choice must be a sequence of candidate indices, but found {choice!r}")
@@ -481,7 +486,7 @@ class Prepared:
         if not math.isfinite(total):
             raise EnergyOverflowError("segment_law: the energy is not finite (a loop too close to the "
                                       "imaginary axis, or a disturbance beyond the float range)")
-        return total
+        return self._energy(total, "segment_law")
 
     def clairvoyant(self) -> tuple:
         """The clairvoyant per-segment oracle: on each piece of d the candidate with the least
@@ -493,7 +498,7 @@ class Prepared:
         choice : list of int
             The candidate on each piece.
         """
-        g, x, total, choice = self.grid, self.xstart.copy(), 0.0, []
+        g, x, total, choice = self.grid, self._xstart.copy(), 0.0, []
         for a, b in self.piece_steps():
             best = None
             for i in range(len(self.loops)):
@@ -503,50 +508,4 @@ class Prepared:
             total += best[0]
             choice.append(best[1])
             x = best[2]
-        return total, choice
-
-
-def _run_on_grid(prep, sigma, mu, dt):
-    """The switched run along ``sigma`` (one candidate per decision interval) by
-    :func:`fdsc.simulate_stream` at step dt."""
-    from .stream import simulate_stream
-
-    sup = prep.sup
-    change = np.flatnonzero(np.diff(sigma)) + 1
-    switch_times = change * sup.decide_every
-    sequence = np.r_[sigma[:1], sigma[change]]
-    block = round(sup.decide_every / dt)
-    # the modes a switch excites: those of the loop switched to (direct); through copies only the
-    # plant's own loop A + B2 K0 (the copies run on ŵ whatever σ does)
-    if sup.K0 is None:
-        excited = [prep.loops[int(m)].A for m in set(sequence[1:].tolist())]
-    else:
-        excited = [sup.plant.A + sup.plant.B2 @ sup.K0] if change.size else []
-    fastest = max([float(np.abs(np.linalg.eigvals(M)).max()) for M in excited] + [0.0])
-    if fastest * dt > STIFF_STEP:
-        warnings.warn(f"supervise: a loop the law switches to has a mode at {fastest:.3g} /s, so "
-                      f"|λ| dt = {fastest * dt:.3g} > {STIFF_STEP:g}: the transient that follows the switch "
-                      "is shorter than a step, and Simpson's rule on the grid misses its energy; run it "
-                      "exactly (dt=None)", RuntimeWarning, stacklevel=3)
-    N = prep.n_blocks * block + 1
-    bounds = [0, *(change * block).tolist(), N - 1]
-    x = prep.xstart.copy()
-    limit = _divergence.threshold([lp.A for lp in prep.loops], prep.loops[0].B, x, prep.d)
-    energy = input_energy = 0.0
-    diverged = None
-    for a, b, m in zip(bounds[:-1], bounds[1:], sequence, strict=True):
-        if b <= a:
-            continue
-        r = simulate_stream(prep.loops[int(m)], shift_signal(prep.d, a * dt), (b - a) * dt, dt, x0=x)
-        energy += r.energy
-        input_energy += r.input_energy
-        x = r.x_final
-        big = float(np.abs(x).max())
-        if big > limit and diverged is None:
-            bound = limit / _divergence.SAFETY
-            diverged = b * dt
-            warnings.warn(_divergence.message("supervise: ", b * dt, big / bound, bound),
-                          UnstableRunWarning, stacklevel=3)
-    share = np.bincount(sigma, minlength=len(prep.loops)) / sigma.size
-    return SupervisedRun(prep.horizon, float(dt), float(energy), float(input_energy), switch_times,
-                         sequence, share, x[:sup.plant.n_states], prep.points, mu, diverged)
+        return self._energy(total, "clairvoyant"), choice

@@ -47,10 +47,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._grid_run import _run_on_grid
 from ._validation import as_positive
 from .controller import Controller, as_controller, switched_loops
-from .decisions import SupervisedRun, _check_mu
-from .prepared import Prepared, _run_on_grid
+from .decisions import SupervisedRun, _check_mu, _unscale
+from .prepared import Prepared
 from .realization import band_filter, copies_loop
 
 __all__ = ["Supervisor", "LAWS", "supervise"]
@@ -63,9 +64,10 @@ class Supervisor:
 
     Parameters
     ----------
-    plant : Plant
+    plant : Plant, control.StateSpace or tuple
         The open-loop plant (one disturbance input, ``B1`` nonzero, so that the estimate
-        ŵ = B1⁺(ẋ − A x − B2 u) of the nominal plant is d).
+        ŵ = B1⁺(ẋ − A x − B2 u) of the nominal plant is d); a python-control StateSpace has
+        the disturbance as its first input and the controls after it.
     gains : sequence of (m_u, n) array_like or Controller
         The candidates (two or more), each stabilizing: state-feedback gains, or controllers
         with states (:class:`fdsc.Controller`; a copy of its loop carries its controller's
@@ -109,9 +111,11 @@ class Supervisor:
     def __init__(self, plant, gains, *, law: str = "cost", bands=None, decide_every: float = 0.1,
                  restart: float = 20.0, K0=None):
         from ._validation import as_choice, as_matrix
-        from .plant import as_plant
+        from .plant import _statespace_matrices, as_plant
 
-        plant = as_plant(plant)
+        # the law is for one disturbance: a python-control StateSpace's first input is it
+        ss = not isinstance(plant, tuple | list) and _statespace_matrices(plant, "plant") is not None
+        plant = as_plant(plant, n_disturbances=1 if ss else None)
         n, mu_ = plant.n_states, plant.n_controls
         if plant.B1.shape[1] != 1:
             raise ValueError("plant must have one disturbance input (B1 of shape (n, 1)), found "
@@ -447,7 +451,8 @@ def supervise(plant, gains, d, horizon: float, dt: float | None = None, *, law: 
     if block < 1 or abs(block * dt - sup.decide_every) > 1e-9 * sup.decide_every:
         raise ValueError(f"decide_every must be a whole number of steps of dt = {dt:g} s, but found "
                          f"{sup.decide_every!r}")
-    mu = prep.mu(forgetting)
+    mu = prep._mu(forgetting)                           # decided scaled (Prepared's Notes)
     _check_mu(mu, "supervise")
-    sigma = prep.decide(mu, hysteresis=hysteresis, warmup=warmup, min_dwell=min_dwell, sigma0=sigma0)
-    return _run_on_grid(prep, sigma, mu, dt)
+    sigma = prep._decide(mu, hysteresis, warmup, min_dwell, sigma0)
+    return _run_on_grid(prep, sigma, _unscale(mu, prep._em, where="supervise: ",
+                                              what="a monitoring signal"), dt)

@@ -135,7 +135,7 @@ def step_check(example: str, index: int, law: str, fs: FixedSet, dts=(1e-3, 5e-4
         ``energy_rel_diff`` (largest relative difference of the stepped energies from the exact
         one).
     """
-    from fdsc.prepared import _run_on_grid
+    from fdsc._grid_run import _run_on_grid
 
     _ex, dr = seeded_draw(example, index, seed)
     sup, _shown, lam, h = law_supervisor(example, law, fs)

@@ -179,7 +179,8 @@ class Theorem1Table:
             entry("thm1_gammas", "Theorem 1, paper Remark 4 (gammas not printed)", None,
                   {"paper_Q": [p.gamma_1, p.gamma_2],
                    "ours": {f"gamma_tol={r.gamma_tol:g}": [r.gamma_1, r.gamma_2] for r in self.designs}},
-                  "new", "the paper prints no gammas; these are the least gammas for which Theorem 1's LMIs are feasible."),
+                  "new", "the paper prints no gammas; these are the least gammas for which "
+                         "Theorem 1's LMIs are feasible."),
             entry("thm1_mode_reference", "Theorem 1 against Lemma 1 for each mode alone", None,
                   {"hinf": {"PassC-LF": self.hinf[0], "PassC-HF": self.hinf[1]},
                    "own_band_peak": {"PassC-LF": self.band_peaks[0], "PassC-HF": self.band_peaks[1]},
