@@ -56,8 +56,13 @@ long enough to repay a compilation (:data:`UNROLL_MIN_STEPS`), with the same res
 """
 
 import concurrent.futures
+import dataclasses
 import math
+import os
+import pickle
+import threading
 import warnings
+from concurrent.futures.process import BrokenProcessPool
 
 import numba
 import numpy as np
@@ -246,8 +251,36 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
     return res
 
 
+#: Held by a chunk of :func:`simulate_batch` or :func:`fdsc.supervise_batch` around its
+#: ``warnings.catch_warnings(record=True)``, which swaps process-wide state and is not
+#: thread-safe: chunks on the threads of one process (an in-process Dask client) run one at a
+#: time. Each process has its own (a forked child gets a new one, never one held by a thread
+#: that did not follow it).
+_CHUNK_LOCK = threading.RLock()
+
+
+def _renew_chunk_lock():
+    global _CHUNK_LOCK
+    _CHUNK_LOCK = threading.RLock()
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_renew_chunk_lock)
+
+
+def _chunk_lock():
+    """The lock a chunk holds while it records its warnings (:data:`_CHUNK_LOCK`)."""
+    return _CHUNK_LOCK
+
+
 def _as_executor(executor):
-    """``executor`` as a :class:`concurrent.futures.Executor` (a Dask client gives its own)."""
+    """``executor`` as a :class:`concurrent.futures.Executor` (a Dask client gives its own);
+    a closed Dask client (or its executor, whose futures would never finish) is refused."""
+    if type(executor).__module__.split(".")[0] == "distributed":
+        for client in (executor, getattr(executor, "_client", None)):
+            if getattr(client, "status", None) in ("closed", "closing"):
+                raise RuntimeError(f"executor is a closed Dask client ({type(executor).__name__} "
+                                   f"with status {client.status!r}); give a running client")
     if isinstance(executor, concurrent.futures.Executor):
         return executor
     if type(executor).__module__.split(".")[0] == "distributed" and hasattr(executor, "get_executor"):
@@ -257,12 +290,57 @@ def _as_executor(executor):
                     f"but found {type(executor).__name__}")
 
 
+def _broken(exc):
+    what = "executor's process pool is broken" if isinstance(exc, BrokenProcessPool) else "executor is broken"
+    return RuntimeError(f"{what} (a worker died abruptly: killed, out of memory or crashed); "
+                        f"make a new one ({type(exc).__name__}: {exc})")
+
+
+def _submit(pool, fn, *args):
+    """``pool.submit(fn, *args)``, a shut-down or broken pool named as ``executor``."""
+    try:
+        return pool.submit(fn, *args)
+    except concurrent.futures.BrokenExecutor as exc:
+        raise _broken(exc) from exc
+    except RuntimeError as exc:
+        if "shutdown" not in str(exc):
+            raise
+        raise RuntimeError(f"executor is shut down ({type(pool).__name__}: {exc}); give one that "
+                           "is running") from exc
+
+
+def _result(future):
+    """``future.result()``, a pool broken while it ran the chunk named as ``executor``."""
+    try:
+        return future.result()
+    except concurrent.futures.BrokenExecutor as exc:
+        raise _broken(exc) from exc
+
+
+def _for_executor(cases):
+    """``cases`` as sent to an executor: without their labels (kept by the caller, they need not
+    pickle), each checked here to pickle, else a TypeError names it."""
+    sent = []
+    for k, c in enumerate(cases):
+        if getattr(c, "label", None) is not None and dataclasses.is_dataclass(c):
+            c = dataclasses.replace(c, label=None)
+        try:
+            pickle.dumps(c, pickle.HIGHEST_PROTOCOL)
+        except Exception as exc:
+            raise TypeError(f"cases[{k}] cannot be sent to the executor: it does not pickle "
+                            f"({type(exc).__name__}: {exc}); every part of a case but its label "
+                            "must be picklable") from exc
+        sent.append(c)
+    return sent
+
+
 def _run_chunk(cases, offset, opts):
     """On a worker: prepare and run ``cases`` (those from ``offset`` on) one after the other.
     Returns the results, what the caller's checks need of each prepared case, and the warnings
-    raised here (category, text), to be raised again by the caller."""
+    raised here (category, text), to be raised again by the caller. Holds :data:`_CHUNK_LOCK`
+    while it records them."""
     cumulative_every, trace_every, dwell_edges, max_memory, kernel, closed_form, specialize = opts
-    with warnings.catch_warnings(record=True) as caught:
+    with _chunk_lock(), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         preps = [_prepare(c, f"cases[{offset + i}]: ", cumulative_every, trace_every, dwell_edges,
                           max_memory) for i, c in enumerate(cases)]
@@ -310,7 +388,13 @@ def simulate_batch(cases, *, cumulative_every: float | None = None, trace_every:
         equal bit for bit to those of the thread path: the loops are the same compiled code
         (read from numba's disk cache by each worker), and no result depends on which worker ran
         a case or with which other cases. Warnings raised on a worker are raised again here.
-        Dask is imported only by the caller who makes the client.
+        Dask is imported only by the caller who makes the client. A
+        :class:`~concurrent.futures.ThreadPoolExecutor` is refused (give ``threads`` instead);
+        an in-process Dask client (``Client(processes=False)``) is accepted, but on threads of
+        one process the chunks run one at a time, each holding a lock while it records its
+        warnings (:func:`warnings.catch_warnings` is not thread-safe), and a warning that another
+        thread raises meanwhile is caught into that chunk: use processes for speed. A case's
+        ``label`` stays here (it need not pickle); every other part of a case must pickle.
     chunksize : int, optional
         Cases per chunk sent to the executor (default: the cases split into 16 chunks, at most
         256 cases each); only with ``executor``.
@@ -326,8 +410,15 @@ def simulate_batch(cases, *, cumulative_every: float | None = None, trace_every:
     ------
     ValueError, TypeError, SingularFrequencyError, MemoryLimitError
         As :func:`simulate_stream`, with the message naming the case (``cases[c]``); also if
-        ``cases`` is empty, ``threads`` or ``chunksize`` is not a positive integer, or
-        ``executor`` is neither an executor nor a Dask client.
+        ``cases`` is empty, ``threads`` or ``chunksize`` is not a positive integer,
+        ``chunksize`` is given without ``executor``, ``executor`` is neither an executor nor a
+        Dask client or is a ThreadPoolExecutor (TypeError), or a case given with ``executor``
+        does not pickle but for its label (TypeError naming ``cases[c]``).
+    RuntimeError
+        If ``executor`` cannot run the chunks, the message starting with ``executor``: a pool
+        that is shut down, a process pool that is broken (a worker died, also while it ran),
+        or a closed Dask client (checked first: its futures would never finish). The error of
+        the pool is chained; RuntimeError is what the pool itself raises.
     EnergyOverflowError
         If a case's state stays finite but its energy exceeds the float range (the first such
         case is named).
@@ -367,14 +458,19 @@ def simulate_batch(cases, *, cumulative_every: float | None = None, trace_every:
                  for i, c in enumerate(cases)]
         results = _run(preps, kernel, threads, closed_form, specialize)
     else:
+        if isinstance(executor, concurrent.futures.ThreadPoolExecutor):
+            raise TypeError("executor must be a process pool or a Dask client, not a "
+                            "ThreadPoolExecutor: to run the cases on this process's threads, drop "
+                            "executor and give threads= (the compiled loops run in parallel there)")
         pool = _as_executor(executor)
         size = (max(1, min(256, -(-len(cases) // 16))) if chunksize is None
                 else as_count("chunksize", chunksize))
-        futures = [pool.submit(_run_chunk, cases[i:i + size], i, opts)
+        sent = _for_executor(cases)
+        futures = [_submit(pool, _run_chunk, sent[i:i + size], i, opts)
                    for i in range(0, len(cases), size)]
         results, preps = [], []
         for future in futures:
-            part, lite, caught = future.result()
+            part, lite, caught = _result(future)
             results += part
             preps += lite
             for category, text in caught:

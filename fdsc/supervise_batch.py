@@ -8,7 +8,9 @@ sampled measurements at a step ``dt`` (:meth:`Supervisor.run_measured
 the workers of a process pool or a Dask cluster, the same executors
 :func:`fdsc.simulate_batch` takes; the results come back in the order of the cases and equal
 those of the serial path bit for bit (each run is deterministic and independent of the others),
-and the warnings raised on a worker are raised again by the caller, naming the case.
+and the warnings raised on a worker are raised again by the caller, naming the case. A chunk
+records its warnings holding the lock of :func:`fdsc.simulate_batch`'s chunks, so that chunks on
+the threads of one process (an in-process Dask client) do not lose them.
 """
 
 from __future__ import annotations
@@ -18,6 +20,7 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 
 from ._validation import as_count, check_type
+from .stream import _as_executor, _chunk_lock, _for_executor, _result, _submit
 from .supervisor import SupervisedRun, Supervisor
 
 __all__ = ["SupervisedCase", "supervise_batch"]
@@ -82,16 +85,18 @@ class SupervisedCase:
 
 
 def _run_chunk(cases, offset):
-    """On a worker: the runs of ``cases`` and the warnings they raised (category, text)."""
+    """On a worker: the runs of ``cases`` and the warnings they raised (category, text). Holds
+    the lock of :func:`fdsc.simulate_batch`'s chunks while it records them."""
     out, caught_all = [], []
-    for i, c in enumerate(cases):
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always")
-            try:
-                out.append(c.run())
-            except Exception as exc:            # re-raised by the caller, naming the case
-                return out, caught_all, (offset + i, exc)
-        caught_all += [(w.category, f"cases[{offset + i}]: {w.message}") for w in caught]
+    with _chunk_lock():
+        for i, c in enumerate(cases):
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                try:
+                    out.append(c.run())
+                except Exception as exc:        # re-raised by the caller, naming the case
+                    return out, caught_all, (offset + i, exc)
+            caught_all += [(w.category, f"cases[{offset + i}]: {w.message}") for w in caught]
     return out, caught_all, None
 
 
@@ -102,10 +107,15 @@ def supervise_batch(cases, *, executor=None, chunksize: int | None = None) -> li
     ----------
     cases : sequence of SupervisedCase
     executor : concurrent.futures.ProcessPoolExecutor or dask.distributed.Client, optional
-        Where to run them (as in :func:`fdsc.simulate_batch`, but not on threads: the runs hold
-        the interpreter's lock); default: here, one after the other.
+        Where to run them (as in :func:`fdsc.simulate_batch`, but not on a thread pool: the runs
+        hold the interpreter's lock); default: here, one after the other. An in-process Dask
+        client (``Client(processes=False)``) is accepted, but on threads of one process the
+        chunks run one at a time (each holds a lock while it records its warnings, and a warning
+        that another thread raises meanwhile is caught into that chunk): use processes for
+        speed. A case's ``label`` stays here (it need not pickle); the rest must pickle.
     chunksize : int, optional
-        Cases per chunk sent to the executor (default: the cases split into 16 chunks).
+        Cases per chunk sent to the executor (default: the cases split into 16 chunks); only
+        with ``executor``.
 
     Returns
     -------
@@ -115,10 +125,14 @@ def supervise_batch(cases, *, executor=None, chunksize: int | None = None) -> li
     Raises
     ------
     TypeError
-        If ``cases`` is not a non-empty sequence of SupervisedCase, or ``executor`` is a thread
-        pool, or neither an executor nor a Dask client.
+        If ``cases`` is not a non-empty sequence of SupervisedCase, ``executor`` is a thread
+        pool or neither an executor nor a Dask client, or a case given with ``executor`` does
+        not pickle but for its label (naming ``cases[c]``).
     ValueError
-        If ``chunksize`` is not a positive integer.
+        If ``chunksize`` is not a positive integer, or is given without ``executor``.
+    RuntimeError
+        If ``executor`` cannot run the chunks (as in :func:`fdsc.simulate_batch`; the message
+        starts with ``executor``): shut down, a broken process pool, or a closed Dask client.
     Exception
         The first failing case's own exception, its message prefixed with ``cases[c]: ``.
 
@@ -144,23 +158,23 @@ def supervise_batch(cases, *, executor=None, chunksize: int | None = None) -> li
         raise TypeError("cases must be a non-empty list or tuple of fdsc.SupervisedCase")
     for k, c in enumerate(cases):
         check_type(f"cases[{k}]", c, SupervisedCase, "an fdsc.SupervisedCase")
-    if chunksize is not None:
-        chunksize = as_count("chunksize", chunksize)
     if executor is None:
-        chunks = [(list(cases), 0)]
-        results = [_run_chunk(*chunks[0])]
+        if chunksize is not None:
+            raise ValueError("chunksize applies only with an executor; give executor= or drop "
+                             f"chunksize (found {chunksize!r})")
+        results = [_run_chunk(list(cases), 0)]
     else:
-        from .stream import _as_executor
-
+        if chunksize is not None:
+            chunksize = as_count("chunksize", chunksize)
         if isinstance(executor, ThreadPoolExecutor):
             raise TypeError("executor must be a process pool or a Dask client, not a ThreadPoolExecutor: the "
                             "runs hold the interpreter's lock (threads would not run them in parallel) and "
                             "the warnings of concurrent threads cannot be told apart")
         pool = _as_executor(executor)
         size = -(-len(cases) // 16) if chunksize is None else chunksize
-        chunks = [(list(cases[a:a + size]), a) for a in range(0, len(cases), size)]
-        futures = [pool.submit(_run_chunk, c, a) for c, a in chunks]
-        results = [f.result() for f in futures]
+        sent = _for_executor(cases)
+        futures = [_submit(pool, _run_chunk, sent[a:a + size], a) for a in range(0, len(cases), size)]
+        results = [_result(f) for f in futures]
     out = []
     for runs, caught, failed in results:
         for category, text in caught:
