@@ -9,9 +9,11 @@ there when it finds them, and executes and stores the others itself.
 Jupyter-cache matches a notebook by its code cells and kernelspec only, never by the code they
 import. The cache therefore lives in a folder named after :func:`source_key`, a hash of everything
 else the outputs depend on: the sources and data of ``fdsc`` (``*.py`` and ``*.json`` under
-``fdsc/``; the top-level ``data`` is a link into it), the pinned ``requirements.txt`` and the
-Python version. After a change of any of them both sides use a new, empty folder and delete the
-old ones, so the book executes the chapters again instead of showing numbers of old code.
+``fdsc/``; the top-level ``data`` is a link into it), the pinned ``requirements.txt``, the lock
+``constraints.txt`` (the version of every installed package), the chapters' ``matplotlibrc``
+and the Python version. After a
+change of any of them both sides use a new, empty folder and delete the old ones, so the book
+executes the chapters again instead of showing numbers of old code or of other packages.
 
 Loaded by Sphinx as an extension (``sphinx.local_extensions`` in ``_config.yml``), it points
 MyST-NB's ``nb_execution_cache_path`` at :func:`cache_path`; the changed value also makes Sphinx
@@ -36,7 +38,7 @@ from sphinx.errors import ExtensionError
 
 from fdsc.paper.shared.cache import environ, file_lock
 
-#: The repository: ``fdsc/``, ``requirements.txt`` and ``book/`` are in it.
+#: The repository: ``fdsc/``, ``requirements.txt``, ``constraints.txt`` and ``book/`` are in it.
 ROOT = Path(__file__).resolve().parents[2]
 SOURCE_SUFFIXES = (".py", ".json")
 KEY_LENGTH = 16  # hex digits of the key that name the cache folder
@@ -48,14 +50,14 @@ def source_key(root):
     Parameters
     ----------
     root : path-like
-        The repository, holding ``fdsc/`` and ``requirements.txt``.
+        The repository, holding ``fdsc/``, ``requirements.txt`` and (optionally) ``constraints.txt``.
 
     Returns
     -------
     str
         SHA-256 hex digest over the relative path and contents of every ``*.py`` and ``*.json``
-        file under ``fdsc/`` (``__pycache__`` skipped) and of ``requirements.txt``, in sorted
-        order, and the Python version.
+        file under ``fdsc/`` (``__pycache__`` skipped), of ``requirements.txt`` and of the lock
+        ``constraints.txt`` if there is one, in sorted order, and the Python version.
 
     Raises
     ------
@@ -74,10 +76,14 @@ def source_key(root):
     files = [p for p in package.rglob("*")
              if p.suffix in SOURCE_SUFFIXES and p.is_file() and "__pycache__" not in p.parts]
     files.append(root / "requirements.txt")
+    # the lock: a package's version changes a chapter's outputs as much as a change of fdsc does
+    files += [p for p in [root / "constraints.txt"] if p.is_file()]
     # data the chapters read that is not in the package: the measured cold execution times and
     # the full study of the law on the disturbance estimate
     files += [p for p in [root / "book" / "data" / "cold_times.json",
                           root / "book" / "data" / "disturbance_law_full.json"] if p.is_file()]
+    # and the chapters' matplotlib settings (their figures' resolution)
+    files += [p for p in [root / "book" / "matplotlibrc"] if p.is_file()]
     h = hashlib.sha256()
     for path in sorted(files, key=lambda p: p.relative_to(root).as_posix()):
         data = path.read_bytes()
@@ -260,9 +266,9 @@ def _check_sources_unchanged(app, exception):
         # neither these outputs nor these pages may be reused, even if the code changes back
         shutil.rmtree(folder, ignore_errors=True)
         Path(app.doctreedir, ENV_PICKLE_FILENAME).unlink(missing_ok=True)
-        raise ExtensionError("notebook_cache: fdsc or requirements.txt changed during the build, "
-                             "so its pages may mix results of old and new code; its notebook "
-                             f"cache {folder} was deleted: build again")
+        raise ExtensionError("notebook_cache: fdsc, requirements.txt or constraints.txt changed "
+                             "during the build, so its pages may mix results of old and new code; "
+                             f"its notebook cache {folder} was deleted: build again")
 
 
 def setup(app):
