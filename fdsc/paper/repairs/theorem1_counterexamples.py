@@ -1,9 +1,12 @@
 """Chapter 'theorem1_counterexamples': Theorem 1 put to the test.
 
-(a) A seeded search for mode pairs and Q's for which Theorem 1's LMIs (paper eqs. (33), (34))
-are feasible but the autonomous switched loop (d = 0) under the printed law (paper eq. (31))
-does not converge, with the cause of each failure measured. (b) The gap-closing certificates of
-:mod:`fdsc.lyapunov_jumps` on the paper's example and on the search's cases. (c) The residues
+(a) The exact counterexample: the return map of a 2-state case over one turn
+(:mod:`fdsc.paper.repairs.theorem1_exact`). (b) A seeded search for mode pairs and Q's for which
+Theorem 1's LMIs (paper eqs. (33), (34)) are feasible but the autonomous switched loop (d = 0)
+under the printed law (paper eq. (31)) does not converge, with the cause of each failure
+measured and clean runs counted apart from sliding ones.
+(c) The gap-closing certificates of
+:mod:`fdsc.lyapunov_jumps` on the paper's example and on the search's cases. (d) The residues
 ε_T and ε_∞ of statements (2) and (3) (paper eqs. (35), (36)) measured on FDSC runs from the
 jumps of ``xᵀ P_σ x``, and β weighted by time against β weighted by disturbance energy.
 
@@ -29,6 +32,11 @@ from fdsc.paper.repairs.theorem1_cases import (
     search_case,
 )
 from fdsc.paper.repairs.theorem1_cases import _x0s as _x0s
+from fdsc.paper.repairs.theorem1_exact import (
+    ExactTurn,
+    exact_applies,
+    exact_turn,
+)
 from fdsc.paper.repairs.theorem1_gap import GapClosing, ResidueRun, gap_closing, residues
 from fdsc.paper.repairs.theorem1_search import (
     SearchResult,
@@ -61,6 +69,9 @@ __all__ = [
     "q_scaling",
     "CLEAN_LIMIT",
     "Q_SCALING_FACTORS",
+    "ExactTurn",
+    "exact_turn",
+    "exact_applies",
     "record_part",
 ]
 
@@ -88,10 +99,23 @@ def record_part() -> RecordPart:
     o = search.divergent()[0]
     small = search.case(o.family, o.seed)
     wit = lmi_witness(small.modes, small.bands, small.Q)
+    kinds = search.run_kinds()
     rec["clean"] = {"limit": CLEAN_LIMIT, "n_clean": len(search.clean()),
+                    "n_sliding": search.counts()["sliding_previous"],
                     "n_diverging_measured": search.counts()["diverging_previous"],
                     "runs": [{"family": d.family, "seed": d.seed, "law": d.law,
-                              "one_sample_dwells": d.chatter} for d in search.diagnoses]}
+                              "one_sample_dwells": d.chatter,
+                              **({"kind": kinds[d.family, d.seed][0],
+                                  "decided_by": kinds[d.family, d.seed][1]}
+                                 if d.law == "previous" else {})} for d in search.diagnoses]}
+    xo, turn = search.exact_counterexample()
+    rec["exact"] = {"family": xo.family, "seed": xo.seed, "law": xo.law,
+                    "multiplier": turn.multiplier, "period": turn.period,
+                    "growth_rate": turn.growth_rate, "angles": turn.angles.tolist(),
+                    "leaving": turn.leaving.tolist(), "dwells": turn.dwells.tolist(),
+                    "gains": turn.gains.tolist(), "normal_speeds": turn.normal_speeds.tolist(),
+                    "entry_margins": turn.entry_margins.tolist(), "clean": turn.clean,
+                    "lmi_holds": turn.lmi_holds, "gammas": turn.gammas.tolist()}
     rec["lmi_witness_smallest"] = {k: getattr(wit, k).tolist() for k in
                                    ("t_s", "t", "gammas", "max_eig_1", "max_eig_2")}
     rec["q_scaling_smallest"] = [dict(vars(q)) for q in
@@ -105,10 +129,13 @@ def record_part() -> RecordPart:
         "A'L + LA = -I, t and gamma large; checked by eigenvalues on the smallest case). "
         f"Seeded search with d = 0: {cnt['tried']} cases, {cnt['feasible']} with Theorem 1 "
         f"feasible (Hurwitz modes only), {cnt['diverging_previous']} diverging under the printed "
-        f"law (measured xdot), {len(search.clean())} of them clean (at most "
-        f"{CLEAN_LIMIT:.0%} of the samples in one-sample dwells), and "
+        f"law (measured xdot): {cnt['clean_previous']} of them clean and {cnt['sliding_previous']} "
+        "sliding (decided by the exact return map in 2 states), and "
         f"{cnt['diverging_candidate']} under the candidate xdot (each confirmed on a {REFINE}x "
-        f"finer grid); scaling both Q's of the smallest case by {Q_SCALING_FACTORS} changes the "
+        f"finer grid). Exact return map of the clean case "
+        f"{xo.family}/{xo.seed}: no switch slides, |x| grows by {turn.multiplier:.4g} per turn "
+        f"({turn.period:.4g} s) with Theorem 1's LMIs holding. Scaling both Q's of the smallest "
+        f"case by {Q_SCALING_FACTORS} changes the "
         f"switching signal at {max(q['mismatches'] for q in rec['q_scaling_smallest'])} samples. Every "
         "divergent case is rebuilt from its family and seed. The gap-closing certificate (jumps of "
         "V, the law's switch-in "

@@ -25,6 +25,7 @@ from fdsc.paper.repairs.theorem1_cases import (
     diagnose,
     search_case,
 )
+from fdsc.paper.repairs.theorem1_exact import ExactTurn, exact_applies, exact_turn
 from fdsc.paper.shared.cache import cached
 from fdsc.paper.shared.prose import count, matrix_text, num, pct
 
@@ -65,6 +66,9 @@ class SearchResult:
             oc = [o for o in self.outcomes if o.law == law]
             out[f"diverging_{law}"] = sum(o.diverging for o in oc)
             out[f"sampling_artefacts_{law}"] = sum(o.grew_coarse and not o.diverging for o in oc)
+        kinds = self.run_kinds()
+        out["clean_previous"] = sum(k == "clean" for k, _ in kinds.values())
+        out["sliding_previous"] = sum(k == "sliding" for k, _ in kinds.values())
         return out
 
     def by_family(self) -> list:
@@ -145,25 +149,93 @@ class SearchResult:
                 return c
         raise KeyError(f"no case {family!r}/{seed}")
 
-    def clean(self, limit: float = CLEAN_LIMIT) -> list:
-        """The divergent runs under the printed law (measured ẋ) with at most ``limit`` of their
-        samples in one-sample dwells: runs that do not chatter, inside Theorem 1's no-sliding
-        assumption.
+    def exact(self, family: str, seed: int, law: str = "previous") -> ExactTurn:
+        """The exact return map (:func:`~fdsc.paper.repairs.theorem1_exact.exact_turn`) of a case.
+
+        Parameters
+        ----------
+        family : str
+        seed : int
+        law : {"previous", "candidate"}, optional
+
+        Returns
+        -------
+        ExactTurn
+        """
+        c = self.case(family, seed)
+        return exact_turn(c.modes, c.bands, c.Q, law=law)
+
+    def run_kinds(self, limit: float = CLEAN_LIMIT) -> dict:
+        """Each divergent run under the printed law (measured ẋ): clean or sliding, and how decided.
+
+        Where the exact return map applies (two states, turning flows) it decides: a run is
+        sliding if a switch of its cycle lands where the mode switched in is beaten at once.
+        Otherwise a run is clean if at most ``limit`` of its samples lie in one-sample dwells.
 
         Parameters
         ----------
         limit : float
-            Largest share of samples in one-sample dwells.
+            Largest one-sample-dwell share of a clean run decided on samples.
+
+        Returns
+        -------
+        dict of (str, int) to (str, str)
+            ``(family, seed)`` → ``("clean" or "sliding", "exact" or "sampled")``.
+        """
+        out = {}
+        for d in self.diagnoses:
+            if d.law != "previous":
+                continue
+            c = self.case(d.family, d.seed)
+            if exact_applies(c.modes, c.bands, c.Q, law=d.law):
+                clean = self.exact(d.family, d.seed, d.law).clean
+                out[d.family, d.seed] = ("clean" if clean else "sliding", "exact")
+            else:
+                out[d.family, d.seed] = ("clean" if d.chatter <= limit else "sliding", "sampled")
+        return out
+
+    def clean(self, limit: float = CLEAN_LIMIT) -> list:
+        """The divergent runs under the printed law (measured ẋ) that do not slide, inside
+        Theorem 1's no-sliding assumption (decided as in :meth:`run_kinds`).
+
+        Parameters
+        ----------
+        limit : float
+            Largest share of samples in one-sample dwells, where the exact map does not apply.
 
         Returns
         -------
         list of Diagnosis
         """
-        return [d for d in self.diagnoses if d.law == "previous" and d.chatter <= limit]
+        kinds = self.run_kinds(limit)
+        return [d for d in self.diagnoses
+                if d.law == "previous" and kinds[d.family, d.seed][0] == "clean"]
+
+    def exact_counterexample(self) -> tuple:
+        """The first clean divergent run (in the order of :meth:`divergent`) whose exact return
+        map proves divergence: Theorem 1's LMIs hold, no switch slides, multiplier > 1.
+
+        Returns
+        -------
+        (CaseOutcome, ExactTurn)
+
+        Raises
+        ------
+        LookupError
+            If no run is proved divergent.
+        """
+        for o in self.divergent():
+            c = self.case(o.family, o.seed)
+            if o.law == "previous" and exact_applies(c.modes, c.bands, c.Q, law=o.law):
+                turn = self.exact(o.family, o.seed, o.law)
+                if turn.proves_divergence:
+                    return o, turn
+        raise LookupError("no divergent run of the search is proved divergent by its return map")
 
     def dwell_rows(self, limit: float = CLEAN_LIMIT) -> list:
         """One row per divergent run, clean runs under the measured ẋ first: family, seed, reading
-        of ẋ (reader-facing), share of samples in one-sample dwells, and whether it is clean.
+        of ẋ (reader-facing), share of samples in one-sample dwells, whether it is clean and
+        what decided it (:meth:`run_kinds`).
 
         Parameters
         ----------
@@ -175,11 +247,15 @@ class SearchResult:
         list of dict
             Every cell text (:mod:`fdsc.paper.shared.prose`).
         """
-        clean = {(d.family, d.seed) for d in self.clean(limit)}
+        kinds = self.run_kinds(limit)
+        clean = {k for k, (kind, _) in kinds.items() if kind == "clean"}
+        how = {"exact": "return map", "sampled": "one-sample dwells"}
         rows = [({"family": d.family, "seed": str(d.seed), "reading of ẋ": _READING[d.law],
                   "one-sample dwells": pct(d.chatter, 1),
                   "clean": ("n/a" if d.law != "previous"
-                            else "yes" if (d.family, d.seed) in clean else "no (chatters)")},
+                            else "yes" if (d.family, d.seed) in clean else "no (slides)"),
+                  "decided by": ("n/a" if d.law != "previous"
+                                 else how[kinds[d.family, d.seed][1]])},
                  (d.law != "previous", (d.family, d.seed) not in clean, d.chatter, d.seed))
                 for d in self.diagnoses]
         return [r for r, _ in sorted(rows, key=lambda rk: rk[1])]
@@ -193,8 +269,9 @@ class SearchResult:
             Counts of cases and runs (``tried``, ``feasible``, ``not_hurwitz``,
             ``solver_failures``, ``diverging_measured``, ``diverging_candidate``,
             ``artefacts_measured``, ``artefacts_candidate``), the clean runs (``n_clean``,
-            ``clean_limit``, ``clean_max``, ``chatter_min``, ``chatter_max`` over the measured
-            runs that are not clean), the divergent runs by family (``div_spiral``, the stretched
+            ``clean_limit``, ``clean_max``), the sliding ones (``n_dirty``, ``chatter_min``,
+            ``chatter_max`` over the measured runs that slide), how many were decided by the
+            exact return map (``n_exact``), the divergent runs by family (``div_spiral``, the stretched
             spirals; ``div_other``, the other families), the diagnoses (``n_diag``;
             ``n_flows_down``, runs whose flows decrease V; ``n_avg_unstable``, runs whose average
             dynamics is unstable; ``cause_<reading>_<cause>`` per reading ``measured`` or
@@ -203,7 +280,9 @@ class SearchResult:
         """
         cnt = self.counts()
         clean = self.clean()
-        dirty = [d.chatter for d in self.diagnoses if d.law == "previous" and d.chatter > CLEAN_LIMIT]
+        kinds = self.run_kinds()
+        dirty = [d.chatter for d in self.diagnoses
+                 if d.law == "previous" and kinds[d.family, d.seed][0] == "sliding"]
         return {"tried": count(cnt["tried"]), "feasible": count(cnt["feasible"]),
                 "not_hurwitz": count(cnt["not_hurwitz"]),
                 "solver_failures": count(cnt["solver_failures"]),
@@ -214,7 +293,9 @@ class SearchResult:
                 "n_clean": count(len(clean)), "clean_limit": pct(CLEAN_LIMIT),
                 "clean_max": pct(max((d.chatter for d in clean), default=0.0), 1),
                 "n_dirty": count(len(dirty)),
-                "chatter_min": pct(min(dirty, default=0.0)), "chatter_max": pct(max(dirty, default=0.0)),
+                "n_exact": count(sum(how == "exact" for _, how in kinds.values())),
+                "chatter_min": pct(min(dirty, default=0.0), 1),
+                "chatter_max": pct(max(dirty, default=0.0)),
                 "n_initial": count(N_INITIAL), "slow": num(SLOW_CONSTANTS, 2),
                 "dtf": num(DT_FRACTION, 1), "maxsteps": count(MAX_STEPS), "refine": count(REFINE),
                 **self._diagnosis_prose()}
