@@ -57,9 +57,10 @@ class Findings:
     lf_ratio : float
         FDSC's energy under the LF tones over PassC-LF's.
     hf_open_loop_ratio : float
-        The open loop's energy under the HF tones over PassC-HF's.
+        The open loop's energy under the HF tones over PassC-HF's in steady state (the runs of
+        500 s from rest carry a start-up transient that the claim is not about).
     airframe_mode, fast_pole, w_h : float
-        |λ| of the open-loop airframe's modes (rad/s), the fast pole of the K_f1 loop (rad/s), and
+        ``|λ|`` of the open-loop airframe's modes (rad/s), the fast pole of the K_f1 loop (rad/s), and
         the HF band's edge ϖ_h (rad/s).
     ideal : dict
         ``{example: least energy of the ideal segment law over the best fixed controller's}``
@@ -70,9 +71,12 @@ class Findings:
         ``{printed bound entry: (printed value, verdict)}``.
     q_gammas : tuple of float
         γ_1, γ_2 for which Theorem 1's LMIs are feasible with the printed Q's.
-    thm1_feasible, thm1_diverging : int
-        Mode pairs of the counterexample search for which Theorem 1's LMIs are feasible, and those that
-        diverge under the printed law (measured ẋ).
+    thm1_feasible, thm1_diverging, thm1_clean, thm1_sliding : int
+        Mode pairs of the counterexample search for which Theorem 1's LMIs are feasible, those that
+        diverge under the printed law (measured ẋ), and of these the runs without sliding (inside
+        the theorem's hypothesis) and those that slide or chatter (outside it).
+    thm1_multiplier : float
+        The growth per turn of the exact counterexample (return map, no sliding).
     law : dict
         ``{example: summary}`` of the law on the disturbance estimate on the test draws of the
         full non-stationary study (:func:`fdsc.paper.pays.disturbance_law.load_full`), or of the
@@ -102,6 +106,9 @@ class Findings:
     q_gammas: tuple
     thm1_feasible: int
     thm1_diverging: int
+    thm1_clean: int
+    thm1_sliding: int
+    thm1_multiplier: float
     law: dict
 
     def prose(self):
@@ -133,6 +140,8 @@ class Findings:
             "crossover": num(self.crossover), "crossover_printed": num(self.crossover_printed, 1),
             "q_gamma_1": num(self.q_gammas[0]), "q_gamma_2": num(self.q_gammas[1]),
             "thm1_feasible": count(self.thm1_feasible), "thm1_diverging": count(self.thm1_diverging),
+            "thm1_clean": count(self.thm1_clean), "thm1_sliding": count(self.thm1_sliding),
+            "thm1_multiplier": times(self.thm1_multiplier),
         }
         for example, mc in self.monte_carlo.items():
             out |= {f"mc_{example}_draws": count(mc["draws"]), f"mc_{example}_best": mc["best"],
@@ -316,7 +325,7 @@ def findings(record):
         monte_carlo=_monte_carlo(e["monte_carlo"]),
         lf_switches=int(lf_fig["switches"]["FDSC"]), lf_horizon=float(lf_fig["horizon"]),
         lf_ratio=stat["LF"]["FDSC"] / stat["LF"]["PassC-LF"],
-        hf_open_loop_ratio=stat["HF"]["open loop"] / stat["HF"]["PassC-HF"],
+        hf_open_loop_ratio=_hf_open_loop_steady(),
         airframe_mode=airframe, fast_pole=fast_pole, w_h=w_h,
         ideal={"aircraft": float(min(base["ideal_segment_law_rho_t"]["ratio_to_best_fixed"])),
                "generic": _ideal_generic()},
@@ -324,11 +333,24 @@ def findings(record):
         bounds={k: (e[k]["paper"], e[k]["verdict"]) for k in PRINTED_BOUNDS},
         q_gammas=tuple(float(g) for g in e["thm1_gammas"]["recomputed"]["paper_Q"]),
         thm1_feasible=int(tc["feasible"]), thm1_diverging=int(tc["diverging_previous"]),
+        thm1_clean=int(tc["clean_previous"]), thm1_sliding=int(tc["sliding_previous"]),
+        thm1_multiplier=float(e["theorem1_counterexamples"]["recomputed"]["exact"]["multiplier"]),
         law=_law(record))
 
 
+def _hf_open_loop_steady():
+    """The open loop's steady-state energy under the HF tones over PassC-HF's (K_f3)."""
+    import fdsc
+    from fdsc.paper.shared.data import aircraft, hf_disturbance, paper_gains
+
+    plant, K, d = aircraft(), paper_gains()["K_f3"], hf_disturbance()
+    ratio = [fdsc.steady_state_gain(plant.closed_loop(G), d.frequencies, d.amplitudes)
+             for G in (np.zeros_like(K), K)]
+    return (ratio[0] / ratio[1]) ** 2
+
+
 def _poles():
-    """|λ| of the airframe's open-loop modes, the fast pole of the K_f1 loop, and ϖ_h."""
+    """``|λ|`` of the airframe's open-loop modes, the fast pole of the K_f1 loop, and ϖ_h."""
     from fdsc.paper.shared.data import aircraft, paper_bands, paper_gains
 
     plant, gains = aircraft(), paper_gains()

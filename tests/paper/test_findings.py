@@ -84,3 +84,18 @@ def test_the_law_comes_from_the_full_study_or_the_record(found):
     assert set(found.law) == {"generic", "aircraft"}
     for r in found.law.values():
         assert r["certified"] is True and r["diverged"] == 0
+
+
+def test_the_open_loop_against_passc_hf_is_a_steady_state_ratio(found):
+    # the energies over [1000 s, 2000 s] of a run from rest, by the exact simulator: the K_f3
+    # loop's slow pole (−0.0165 /s) has decayed there, as it has not over the paper's 500 s
+    import fdsc
+    from fdsc.paper.shared.data import aircraft, hf_disturbance, paper_gains
+
+    plant, K, d = aircraft(), paper_gains()["K_f3"], hf_disturbance()
+    tail = []
+    for G in (np.zeros_like(K), K):
+        r = fdsc.simulate_stream(plant.closed_loop(G), d, 2000.0, 1e-3, cumulative_every=1000.0)
+        tail.append(r.energy_cum[-1] - r.energy_cum[-2])
+    assert found.hf_open_loop_ratio == pytest.approx(tail[0] / tail[1], rel=1e-3)
+    assert 0.99 < found.hf_open_loop_ratio < 1.0          # not the from-rest run's ×0.76
