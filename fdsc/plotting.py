@@ -24,7 +24,7 @@ def _every(sim, bins):
     return max(1, int(np.ceil(sim.t.size / as_count("bins", bins))))
 
 
-def plot_run(sim, ax=None, *, component=0, bins=1000, label=None):
+def plot_run(sim, ax=None, *, component=0, bins=1000, label=None, color=None):
     """One regulated output ``z_k(t)`` of a run, drawn as its min–max band per time bin.
 
     Parameters
@@ -39,6 +39,8 @@ def plot_run(sim, ax=None, *, component=0, bins=1000, label=None):
         Number of time bins (each draws the smallest and largest sample it holds).
     label : str, optional
         Legend label.
+    color : matplotlib colour, optional
+        The band's colour (default: the axes' next colour).
 
     Returns
     -------
@@ -65,7 +67,7 @@ def plot_run(sim, ax=None, *, component=0, bins=1000, label=None):
                          f"{component}")
     ax = _axes(ax)
     tb, lo, hi = envelope(sim.t, sim.z[:, component], _every(sim, bins))
-    ax.fill_between(tb, lo, hi, step="post", alpha=0.6, label=label, linewidth=0.5)
+    ax.fill_between(tb, lo, hi, step="post", alpha=0.6, label=label, linewidth=0.5, color=color)
     ax.set_xlabel("t (s)")
     ax.set_ylabel(f"z[{component}]")
     if label is not None:
@@ -73,7 +75,7 @@ def plot_run(sim, ax=None, *, component=0, bins=1000, label=None):
     return ax
 
 
-def plot_modes(sim, ax=None, *, bins=1000):
+def plot_modes(sim, ax=None, *, bins=1000, names=None, colors=None):
     """The switching signal σ(t) of a run, as the share of each time bin spent in each mode.
 
     Parameters
@@ -84,11 +86,20 @@ def plot_modes(sim, ax=None, *, bins=1000):
         Where to draw (default: a new figure).
     bins : int, optional
         Number of time bins.
+    names : sequence of str, optional
+        The modes' names in the legend, one per mode (default ``"mode 0"``, ``"mode 1"``, …).
+    colors : sequence of matplotlib colours, optional
+        One per mode (default: the axes' colour cycle).
 
     Returns
     -------
     matplotlib.axes.Axes
         One stacked area per mode, from 0 to 1.
+
+    Raises
+    ------
+    ValueError
+        If ``names`` or ``colors`` does not give one entry per mode of the run.
 
     Examples
     --------
@@ -104,10 +115,16 @@ def plot_modes(sim, ax=None, *, bins=1000):
     starts = np.arange(0, sim.t.size, every)
     counts = np.diff(np.append(starts, sim.t.size))
     n_modes = int(sim.sigma.max()) + 1
+    for arg, given in (("names", names), ("colors", colors)):
+        if given is not None and (isinstance(given, str) or len(given) < n_modes):
+            raise ValueError(f"{arg} must give one entry per mode of the run (at least {n_modes}), "
+                             f"but found {given!r}")
+    labels = [f"mode {i}" for i in range(n_modes)] if names is None else [str(n) for n in names[:n_modes]]
     shares = [np.add.reduceat((sim.sigma == i).astype(float), starts) / counts for i in range(n_modes)]
-    ax.stackplot(sim.t[starts], *shares, step="post", labels=[f"mode {i}" for i in range(n_modes)])
+    ax.stackplot(sim.t[starts], *shares, step="post", labels=labels,
+                 colors=None if colors is None else list(colors[:n_modes]))
     ax.set_ylim(0, 1)
     ax.set_xlabel("t (s)")
-    ax.set_ylabel("share of the bin in mode i")
+    ax.set_ylabel("share of the bin in mode i" if names is None else "share of the bin [-]")
     ax.legend(loc="upper right")
     return ax

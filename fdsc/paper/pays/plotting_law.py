@@ -1,9 +1,11 @@
 """Figures of the chapters 'fixed_controllers' and 'disturbance_law' (result in, Axes out)."""
 
+import math
+
 import numpy as np
 
 from fdsc.paper.shared.plotting import _axes
-from fdsc.paper.shared.style import FAMILY_STYLES, band_color, family_style
+from fdsc.paper.shared.style import FAMILY_STYLES, MARK_COLOR, band_color, family_style, style
 
 __all__ = ["plot_law_run", "plot_ratio_cdf", "plot_fixed_plane", "plot_family_ratios",
            "plot_switch_tradeoff", "plot_law_rho_t"]
@@ -30,10 +32,10 @@ def plot_law_run(lr, axes):
             ax.axvspan(a, b, color=band_color(dom), alpha=0.12, lw=0)
     t, mu = lr.run.t_mu, lr.run.mu
     keep = np.any(mu > 0, axis=0)
-    colors = ("tab:red", "goldenrod", "tab:blue", "0.3", "tab:green", "tab:purple", "tab:brown")
     for i, name in enumerate(lr.names):
         if keep[i]:
-            top.semilogy(t[1:], np.maximum(mu[1:, i], 1e-300), color=colors[i % len(colors)],
+            st = style(name, i)
+            top.semilogy(t[1:], np.maximum(mu[1:, i], 1e-300), color=st["color"],
                          ls=("-", "--", "-.", ":")[i % 4], lw=1.2, label=name)
     lo = np.quantile(mu[1:][mu[1:] > 0], 0.02)
     top.set_ylim(lo, mu.max() * 3)
@@ -51,7 +53,7 @@ def plot_law_run(lr, axes):
     return top, bottom
 
 
-def plot_ratio_cdf(series, reference, ax=None, *, xlim=(0.5, 2.0)):
+def plot_ratio_cdf(series, reference, ax=None, *, xlim=None):
     """Empirical distributions, over test draws, of energies over the fixed controller chosen
     in advance's; a curve beyond the axis is named in its label with its median.
 
@@ -63,12 +65,16 @@ def plot_ratio_cdf(series, reference, ax=None, *, xlim=(0.5, 2.0)):
         The name of the fixed controller chosen in advance (the axis label).
     ax : Axes, optional
     xlim : (float, float), optional
+        The axis' range (default: from the 1st to the 99th percentile of the curves whose median
+        lies in [¼, 4], with 1 included, so that curves close to 1 are told apart).
 
     Returns
     -------
     Axes
     """
     ax = _axes(ax, (7, 4))
+    if xlim is None:
+        xlim = _ratio_range(series)
     colors = ("darkgreen", "#1b9e77", "k", "#7570b3", "tab:purple", "tab:brown", "0.5", "tab:orange")
     styles = ("-", "--", ":", "-.", "-", "--", ":", "-.")
     for k, (name, v) in enumerate(series.items()):
@@ -80,7 +86,10 @@ def plot_ratio_cdf(series, reference, ax=None, *, xlim=(0.5, 2.0)):
     ax.axvline(1.0, color="0.3", lw=0.8)
     ax.set_xscale("log")
     ax.set_xlim(*xlim)
-    ticks = [t for t in (0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 4.0) if xlim[0] <= t <= xlim[1]]
+    ticks = [t for t in _TICKS if xlim[0] <= t <= xlim[1]]
+    while len(ticks) > 7:                          # keep 1 and every other tick about it
+        k = ticks.index(1.0)
+        ticks = [t for i, t in enumerate(ticks) if (i - k) % 2 == 0]
     ax.set_xticks(ticks, [f"{t:g}" for t in ticks])
     ax.minorticks_off()
     ax.set_xlabel(f"energy / energy of {reference} [-]")
@@ -89,6 +98,22 @@ def plot_ratio_cdf(series, reference, ax=None, *, xlim=(0.5, 2.0)):
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8, loc="lower right")
     return ax
+
+
+_TICKS = (0.25, 0.5, 0.75, 0.8, 0.85, 0.9, 0.95, 1.0, 1.05, 1.1, 1.2, 1.3, 1.5, 1.75, 2.0, 3.0, 4.0)
+
+
+def _ratio_range(series):
+    """The axis range of :func:`plot_ratio_cdf`: the 1st–99th percentiles of the curves whose
+    median lies in [¼, 4] (1 included), widened by 3 % on the log scale, within [¼, 4]."""
+    lo, hi = 1.0, 1.0
+    for v in series.values():
+        v = np.asarray(v, dtype=float)
+        v = v[np.isfinite(v) & (v > 0)]
+        if v.size and 0.25 <= np.median(v) <= 4.0:
+            lo, hi = min(lo, float(np.quantile(v, 0.01))), max(hi, float(np.quantile(v, 0.99)))
+    pad = 0.03 * math.log(hi / lo) if hi > lo else 0.05
+    return max(0.25, lo * math.exp(-pad)), min(4.0, hi * math.exp(pad))
 
 
 def plot_fixed_plane(points, chosen, ax=None, *, top=None):
@@ -128,7 +153,7 @@ def plot_fixed_plane(points, chosen, ax=None, *, top=None):
         seen.add(fam)
     if chosen in points and np.isfinite(points[chosen][1]):
         _f, lf, hf = points[chosen]
-        ax.plot(lf, hf, ls="none", marker="o", ms=14, mfc="none", mec="tab:red", mew=1.5,
+        ax.plot(lf, hf, ls="none", marker="o", ms=14, mfc="none", mec=MARK_COLOR, mew=1.5,
                 label="chosen in advance", zorder=3)
     ax.set_xscale("log")
     ax.set_yscale("log")
@@ -159,7 +184,7 @@ def plot_family_ratios(ratios, reference, ax=None):
     ax.boxplot([np.asarray(ratios[k], dtype=float) for k in labels], vert=False, whis=(5, 95),
                showfliers=False, medianprops={"color": "k"})
     ax.set_yticks(range(1, len(labels) + 1), labels, fontsize=8)
-    ax.axvline(1.0, color="tab:red", lw=0.8)
+    ax.axvline(1.0, color=MARK_COLOR, lw=0.8)
     ax.set_xscale("log")
     ax.set_xlabel(f"energy / energy of {reference} (5–95 % whiskers) [-]")
     ax.grid(True, which="both", axis="x", alpha=0.3)
@@ -204,8 +229,8 @@ def plot_switch_tradeoff(table, chosen, limit, ax=None, *, top=2.0):
                 ls="none", marker=marks[k % len(marks)], color=colors[k % len(colors)], ms=6, label=label)
     pick = next(r for r in table if r["law"] == chosen)
     ax.plot(pick["switches_per_change"], np.exp(pick["log_ratio"]), ls="none", marker="o", ms=14,
-            mfc="none", mec="tab:red", mew=1.5, label="chosen")
-    ax.axvline(limit, color="tab:red", lw=0.8, ls="--")
+            mfc="none", mec=MARK_COLOR, mew=1.5, label="chosen")
+    ax.axvline(limit, color=MARK_COLOR, lw=0.8, ls="--", label="switching limit")
     ax.axhline(1.0, color="0.3", lw=0.8)
     ax.set_xscale("symlog", linthresh=1.0)
     ax.set_xlim(left=0)

@@ -19,7 +19,7 @@ from fdsc.paper.shared.plotting_runs import (
     plot_sigma_timeline,
     plot_sweep,
 )
-from fdsc.paper.shared.style import STYLES, band_color, style
+from fdsc.paper.shared.style import STYLES, VERDICT_COLORS, band_color, style
 
 __all__ = [
     "plot_psi_weights",
@@ -201,13 +201,15 @@ def plot_hf_sigma_scan(result, ax=None, *, reference=True):
     scan = result.scan
     pos = scan.sigma > 0
     s = scan.sigma[pos]
-    ax.loglog(s, scan.gamma_lmi[pos], "o-", label=r"LMI bound $\gamma$ (in band)")
-    ax.loglog(s, scan.gamma_sweep[pos], "s--", label="in-band peak (sweep)")
-    ax.loglog(s, scan.out_of_band[pos], "^:",
+    # the designs over σ in greys (data of one family), K_f3 (PassC-HF) in its own colour
+    ax.loglog(s, scan.gamma_lmi[pos], "o-", color="k", label=r"LMI bound $\gamma$ (in band)")
+    ax.loglog(s, scan.gamma_sweep[pos], "s--", color="0.4", label="in-band peak (sweep)")
+    ax.loglog(s, scan.out_of_band[pos], "^:", color="0.6",
               label=rf"out-of-band peak ($|\omega| \leq {scan.band_edge:g}$)")
     if reference:
-        ax.axhline(result.K_f3_in_band, color="tab:green", lw=1, label="K_f3 in band")
-        ax.axhline(result.K_f3_out_of_band, color="tab:red", lw=1, label="K_f3 out of band")
+        ax.axhline(result.K_f3_in_band, color=style("K_f3")["color"], lw=1, label="K_f3 in band")
+        ax.axhline(result.K_f3_out_of_band, color=style("K_f3")["color"], lw=1, ls=":",
+                   label="K_f3 out of band")
     ax.set_xlabel(r"fictitious-pole parameter $\sigma$ [rad/s]")
     ax.set_ylabel(r"$\sigma_{max}$ peak [-]")
     ax.legend(fontsize=8)
@@ -332,21 +334,21 @@ def plot_prop1_cases(rows, ax: plt.Axes | None = None) -> plt.Axes:
         sel = [c for c in rows.cases if c.kind == kind]
         if sel:
             ax.scatter([c.S_in for c in sel], [c.S_out for c in sel], marker=m, s=18,
-                       facecolors="none", edgecolors=["tab:green" if c.passed else "tab:red"
-                                                     for c in sel], label=kind)
+                       facecolors="none", edgecolors=[VERDICT_COLORS[bool(c.passed)] for c in sel],
+                       label=kind)
     _symlog(ax, "x", 1e-4)
     _symlog(ax, "y", 1e-4)
     ax.axvline(0, color="0.4", lw=0.8)
     ax.axhline(0, color="0.4", lw=0.8)
     x0, x1 = ax.get_xlim()
     y0, y1 = ax.get_ylim()
-    ax.fill_between([0, x1], y0, 0, color="tab:green", alpha=0.07, lw=0)
+    ax.fill_between([0, x1], y0, 0, color="0.5", alpha=0.08, lw=0)
     ax.set_xlabel(r"$S(\Omega^{in}, Q^{in})$ (or its average) [-]")
     ax.set_ylabel(r"$S(\Omega^{out}, Q^{out})$ [-]")
     ax.set_xlim(x0, x1)
     ax.set_ylim(y0, y1)
     _outside_legend(ax)
-    ax.get_legend().set_title("green: holds, red: fails", prop={"size": 7})
+    ax.get_legend().set_title("dark: holds, magenta: fails", prop={"size": 7})
     return ax
 
 

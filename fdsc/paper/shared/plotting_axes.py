@@ -42,7 +42,7 @@ def _label(name, factor=1.0):
 
 
 def _outside_legend(ax):
-    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
+    ax.legend(fontsize=8.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
 
 
 def _axes(ax, figsize=(7, 4)):

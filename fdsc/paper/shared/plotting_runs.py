@@ -24,7 +24,10 @@ def plot_outputs(data, component: int, ax: plt.Axes | None = None, *, scale: dic
 
     The whole run is drawn as the min/max envelope of each bin of the decimated record (a band
     that holds every sample, so oscillations faster than the bins are not aliased into a false
-    slow wave); with ``head=True`` the start of the run is drawn sample by sample instead.
+    slow wave); with ``head=True`` the start of the run is drawn sample by sample instead. Where
+    several fixed controllers are drawn, the first is drawn dashed on top of the wider later
+    ones, so that near-equal outputs both show. The legend goes above the axes, once for a
+    column of axes (on its top row).
 
     Parameters
     ----------
@@ -62,6 +65,9 @@ def plot_outputs(data, component: int, ax: plt.Axes | None = None, *, scale: dic
         fixed = not name.startswith("FDSC")
         z = 10 - n_fixed if fixed else 1
         n_fixed += fixed
+        several = sum(not n.startswith("FDSC") for n in data.z_lo if names is None or n in names) > 1
+        if fixed and n_fixed == 1 and several:
+            ls = (0, (4, 2))
         f = (scale or {}).get(name, 1.0)
         lab = _label(name) if f == 1.0 else f"{_label(name)} × {f:g}"
         if head:
@@ -78,7 +84,13 @@ def plot_outputs(data, component: int, ax: plt.Axes | None = None, *, scale: dic
     ax.set_ylabel(f"$z_{component + 1}$ = {labels[component]} [-]", fontsize=9)
     if linthresh is not None:
         _symlog(ax, "y", linthresh)
-    _outside_legend(ax)
+    spec = ax.get_subplotspec()
+    if spec is not None and not spec.is_last_row():   # a column of axes shares the bottom's t
+        ax.set_xlabel("")
+    if spec is None or spec.is_first_row():
+        handles, labels_ = ax.get_legend_handles_labels()
+        ax.legend(handles, labels_, fontsize=9, loc="lower center", bbox_to_anchor=(0.5, 1.01),
+                  ncol=min(4, len(labels_)), borderaxespad=0, frameon=False)
     return ax
 
 

@@ -11,8 +11,8 @@ This module holds data only (no matplotlib): every plotting module of the paper 
 chapter draws through :func:`style`.
 """
 
-__all__ = ["STYLES", "GAIN_CONTROLLER", "BAND_CONTROLLER", "FAMILY_STYLES", "style", "band_color",
-           "family_style"]
+__all__ = ["STYLES", "GAIN_CONTROLLER", "BAND_CONTROLLER", "FAMILY_STYLES", "MARK_COLOR",
+           "VERDICT_COLORS", "style", "band_color", "family_style"]
 
 #: ``{name: (colour, marker, line style)}`` of every controller the book draws.
 STYLES = {
@@ -46,6 +46,13 @@ FAMILY_STYLES = {
     "H2": ("#756bb1", "^"),
     "tuned": ("k", "*"),
 }
+
+#: Marks that are not data (the reference ratio 1, a limit, the ring of what was chosen): black,
+#: never a controller's colour.
+MARK_COLOR = "k"
+
+#: A check that holds or fails (cases, not controllers): a palette apart from the controllers'.
+VERDICT_COLORS = {True: "0.15", False: "#c51b7d"}
 
 #: A printed gain → the controller it is (and is drawn as).
 GAIN_CONTROLLER = {"K_f1": "PassC-LF", "K_f2": "PassC-MF", "K_f3": "PassC-HF", "K_e": "PassC-EF"}
