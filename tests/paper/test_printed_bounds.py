@@ -52,8 +52,16 @@ def test_one_verdict_per_bound_by_the_stated_quantity(pb, entries):
         e = entries[BOUND_IDS[b.gain]]
         assert e["verdict"] == b.verdict == verdict(b.paper, b.peak)
         assert e["paper"] == b.paper and e["recomputed"] == b.peak
-    # K_f1's and K_f3's printed inequalities fail for the printed gains; K_e's holds, loosely
+    # K_f1's, K_f2's and K_f3's printed inequalities fail for the printed gains; K_e's holds, loosely:
+    # a second axis beside the verdict (K_f2 is close but false, K_e differs but is true)
     assert [b.holds for b in pb.bounds] == [False, False, False, True]
+    for b in pb.bounds:
+        ineq = entries[BOUND_IDS[b.gain]]["inequality"]
+        assert ineq["holds"] == (ineq["quantity"] < ineq["bound"]) == b.holds
+        assert (ineq["quantity"], ineq["bound"]) == (b.peak, b.paper)
+    assert "inequality fails" in pb["K_f2"].stated() and "inequality holds" in pb["K_e"].stated()
+    prose = pb.prose()
+    assert (prose["n_hold"], prose["hold_gains"], prose["fail_gains"]) == ("1", "K_e", "K_f1, K_f2 and K_f3")
     assert pb["K_f3"].factor > 9 and pb["K_e"].factor < 0.6
 
 

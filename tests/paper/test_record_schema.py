@@ -142,6 +142,10 @@ def test_the_merged_entries_have_their_shape(validator):
                          "frequency-domain candidates": {}, "time domain, nearest of the quantities "
                          "searched": {}, "time domain, equal to the printed value": [],
                          "time domain, quantities searched": 494}
+    assert "'inequality' is a required property" in _errors(validator, record)
+    bound["inequality"] = {"statement": "s", "quantity": 1.605, "bound": 0.1714, "holds": "no"}
+    assert "'no' is not of type 'boolean'" in _errors(validator, record)
+    bound["inequality"]["holds"] = False
     validator.validate(record)
     more = {"every_fixed_controller": {"tuned": ["tuned"]}, "chosen_in_advance": "tuned"}
     comparators = entry("comparators", "ours", None, {"aircraft": {"names": ["open loop"], "best": {

@@ -1,18 +1,30 @@
 """The report's rows from small synthetic records (with and without claims and figure data)."""
 
+import re
+
 import numpy as np
 import pytest
 
+from fdsc.paper.appendix.report_values import key_words, note_html, value_html, words
 from fdsc.paper.appendix.reproduction_report import (
+    LAW_ENTRY,
     NO_CHECKLIST,
     NO_CLAIM,
     claim_rows,
     claims_sentence,
+    counts_prose,
+    counts_sentence,
+    entry_kind,
     errata,
     figure_rows,
     figures_named,
     finding_rows,
+    inequality_cell,
+    input_rows,
+    law_rows,
+    printed_counts,
     printed_rows,
+    step_rows,
     summary,
 )
 from fdsc.paper.record import PAPER_FIGURES
@@ -26,6 +38,11 @@ def _claim(source, verdict, value=0.1):
             "verdict": verdict, "reason": "r"}
 
 
+LAW_CHECK = {"draws_test": 6, "draws_train": 6, "fixed_in_advance": "tuned filtered",
+             "median_ratio_vs_fixed_in_advance": 0.9594, "win_rate_vs_fixed_in_advance": 1.0,
+             "reference_median_ratio": 0.9592}
+
+
 def record(*, claims=True):
     rec = {
         "entries": [
@@ -34,6 +51,17 @@ def record(*, claims=True):
                   "within 1 %"),
             entry("bound_f1", "Sec. IV", 0.3443, np.float64(0.3737360687), "not reproducible",
                   "no candidate"),
+            entry("bound_f2", "Sec. IV, the bound beside K_f2", 0.4025, 0.4027932507, "close", "within 1 %",
+                  inequality={"statement": "s", "quantity": 0.4027932507, "bound": 0.4025, "holds": False}),
+            entry("bound_e", "Sec. IV, the bound beside K_e", 0.7125, 0.4027932507, "differs", "loose",
+                  inequality={"statement": "s", "quantity": 0.4027932507, "bound": 0.7125, "holds": True}),
+            entry("psi", "Sec. III, proof of Proposition 1", "w >= 0 on Omega_i", {"sign_violations": 0},
+                  "match", "no sign violation"),
+            entry("prop1", "Sec. III, Proposition 1", {"LF": "(w_l - jw)(w_l + jw) > 0"}, {"grid_points": 8},
+                  "differs", "wrong sign"),
+            entry("lf_claims", "Sec. IV, text on paper Fig. 4", ["the range of PassC-LF is the smallest"],
+                  {"the range": {"holds": False}}, "differs", "each sentence read"),
+            entry(LAW_ENTRY, "ours", None, {"aircraft": LAW_CHECK}, "new", "the record's subset"),
             entry("sweep", "ours", None, {"rho_p": list(np.linspace(0, 0.5, 21))}, "new", "a finding"),
             entry("model", "Sec. IV", {"A_long": [[-1.175, 0.9871]]}, {"A_long": [[-1.175, 0.9871]]},
                   "input", "as printed"),
@@ -51,15 +79,100 @@ def record(*, claims=True):
     return rec
 
 
-def test_printed_rows_hold_every_printed_entry_with_compact_values():
-    rows = printed_rows(record())
-    # hf_best carries the printed K_f3 for reference but compares nothing (verdict new): left out
-    assert [r["id"] for r in rows] == ["K_f1", "bound_f1", "model"]
-    k = rows[0]
-    assert k["paper"] == "[[0.1048, 15.09], [0.0205, 2.976]]"
-    assert k["ours"] == "[[0.1049, 15.1], [0.02052, 2.978]]"
-    assert (k["verdict"], k["reason"], k["source"]) == ("close", "within 1 %", "Sec. IV, K_{f_1}")
-    assert rows[1]["ours"] == "0.3737" and rows[2]["paper"] == "A_long: [[-1.175, 0.9871]]"
+def test_each_entry_has_one_kind():
+    kinds = {e["id"]: entry_kind(e) for e in record()["entries"]}
+    assert kinds == {"K_f1": "printed number", "bound_f1": "printed number", "bound_f2": "printed number",
+                     "bound_e": "printed number", "psi": "proof step", "prop1": "proof step",
+                     "lf_claims": "sentences", "sweep": "finding", "model": "input", "hf_best": "finding",
+                     LAW_ENTRY: "finding"}
+
+
+def test_printed_rows_hold_the_printed_numbers_in_words_with_both_axes():
+    rows = printed_rows(record(), {"passive_controllers": "Passive controllers"})
+    # proof steps, sentences, inputs and findings have tables of their own
+    assert [r["id"] for r in rows] == ["K_f1", "bound_f1", "bound_f2", "bound_e"]
+    k, b2, be = rows[0], rows[2], rows[3]
+    assert k["printed"].startswith("<table class='matrix'>") and "<td>15.0897</td>" in k["printed"]
+    assert "<td>15.098</td>" in k["ours"] and k["holds"] == "—" and k["verdict"] == "close"
+    # the value's verdict and the inequality are two axes: close but false, differs but true
+    assert (b2["verdict"], b2["holds"]) == ("close", "fails: 0.4028 ≥ 0.4025")
+    assert (be["verdict"], be["holds"]) == ("differs", "holds: 0.4028 &lt; 0.7125")
+    assert "Sec. IV, K_{f_1}" in k["item"] and "within 1 %" in k["item"]
+
+
+@pytest.mark.parametrize("rows", [printed_rows, step_rows, input_rows, finding_rows, claim_rows, errata,
+                                  lambda rec: law_rows(rec, None)])
+def test_no_cell_holds_a_raw_dictionary_or_an_internal_key(rows):
+    text = " ".join(str(v) for r in rows(record()) for k, v in r.items() if k not in ("id", "kind"))
+    # neither a Python dict nor the record's compact form of one ("key: {key: value}")
+    assert not re.search(r"\{\s*['\"]?[\w ]+['\"]?\s*:", text), text
+    for key in ("sign_violations", "grid_points", "A_long", "draws_test", "bound_f2", "K_f1<"):
+        assert key not in text
+
+
+def test_step_rows_hold_proof_steps_then_sentences():
+    rows = step_rows(record())
+    assert [(r["id"], r["kind"]) for r in rows] == [("psi", "proof step"), ("prop1", "proof step"),
+                                                     ("lf_claims", "sentences")]
+    assert rows[0]["printed"] == "w ≥ 0 on Ω_i"
+    assert rows[1]["printed"] == '<ul class="kv"><li>LF: (w_l - jw)(w_l + jw) &gt; 0</li></ul>'
+    assert rows[2]["printed"] == "<ul><li>the range of PassC-LF is the smallest</li></ul>"
+
+
+def test_input_rows_fold_the_printed_values():
+    [row] = input_rows(record())
+    assert row["printed"].startswith("<details><summary>the printed values</summary>")
+    assert "A_long" not in row["printed"] and "<td>−1.175</td>" in row["printed"]
+
+
+def test_counts_are_over_one_kind_each():
+    c = printed_counts(record())
+    assert c["numbers"] == {"match": 0, "close": 2, "differs": 1, "not reproducible": 1}
+    assert c["inequalities"] == {"hold": 1, "fail": 1} and c["fail_printed"] == [0.4025]
+    assert c["proof_steps"] == {"match": 1, "close": 0, "differs": 1, "not reproducible": 0}
+    assert (c["sentences"], c["inputs"], c["findings"]) == (1, 1, 3)
+    assert c["claims"] == {"PASS": 2, "PARTLY": 1, "FAIL": 2}
+    p = counts_prose(record())
+    assert (p["n_numbers"], p["numbers_close"]) == ("4", "2")
+    assert (p["n_inequalities"], p["inequalities_fail"]) == ("2", "1")
+    assert p["inequalities_fail_printed"] == "0.4025"
+    assert (p["n_steps"], p["steps_match"], p["n_claims"], p["claims_fail"]) == ("2", "1", "5", "2")
+    assert counts_prose(record(claims=False))["n_claims"] == "0"
+    assert counts_sentence(record()) == (
+        "Of the 4 numbers the paper prints as results, 0 match ours, 2 are close (within 1 %), 1 differ "
+        "and 1 cannot be reproduced; 2 are the bounds of printed inequalities, of which 1 holds and "
+        "1 fails. Checked apart: 2 proof steps, of which 1 holds as printed; 5 claims about the "
+        "simulations, of which 2 hold, 1 hold in part and 2 fail.")
+
+
+def test_law_rows_label_the_stored_study_and_the_build_time_check():
+    full = {"n": 500, "commit": "048c47d821e7618526fc6ede3a9a4bf9876badfe",
+            "aircraft": dict(LAW_CHECK, draws_test=250, median_ratio_vs_fixed_in_advance=0.9836,
+                             win_rate_vs_fixed_in_advance=0.848)}
+    stored, check = law_rows(record(), full)
+    assert stored["study"] == "stored study: 500 draws per example, computed at commit 048c47d"
+    assert (stored["scored"], stored["median"], stored["wins"]) == ("250", "×0.984", "85 %")
+    assert check["study"].startswith("build-time check: the first 12 of the stored study's draws")
+    assert (check["scored"], check["median"], check["wins"]) == ("6", "×0.959", "100 %")
+    assert "sources have changed" in law_rows(record(), full, fresh=False)[0]["study"]
+    assert [r["scored"] for r in law_rows(record(), None)] == ["6"]
+    # the check is shown beside the stored study, not among the findings
+    assert LAW_ENTRY not in [r["id"] for r in finding_rows(record())]
+
+
+def test_values_and_notes_in_words():
+    assert words("rho_p <= 0.2 for 2 delta_E") == "ρ_p ≤ 0.2 for 2δ_E"
+    assert key_words("max_fdsc_over_band_peak") == "max fdsc over band peak" and key_words("w_l") == "w_l"
+    assert value_html(list(range(30))).startswith("<details><summary>0, 1, 2, 3, … (30 values)")
+    nested = '<ul class="kv"><li>a: <ul class="kv"><li>b_c: 1</li></ul></li></ul>'
+    assert value_html({"a": {"b_c": 1.0}}) == nested
+    assert value_html(True) == "yes" and value_html(None) == "—" and value_html(np.float64(2.5)) == "2.5"
+    long = "The first sentence is here. " + "More words follow. " * 20
+    folded = note_html(long)
+    assert folded.startswith("<details><summary>The first sentence is here. …</summary>")
+    assert folded.count("More words follow.") == 20
+    assert inequality_cell({"inequality": {"quantity": 0.40251, "bound": 0.4025, "holds": False}}) == (
+        "fails: 0.40251 ≥ 0.4025")
 
 
 def test_compact_shortens_long_lists_and_dicts():
@@ -87,10 +200,10 @@ def test_figures_named(source, figures):
 
 
 def test_figure_rows_cover_every_paper_figure_with_link_status_and_verdict():
-    rows = figure_rows(record())
+    rows = figure_rows(record(), {"gkyp_lemma": "The gKYP lemma"})
     assert [r["number"] for r in rows] == list(PAPER_FIGURES) == list(range(1, 9))
     by = {r["number"]: r for r in rows}
-    assert by[3]["link"] == '<a href="gkyp_lemma.html">gkyp_lemma</a>'
+    assert by[3]["link"] == '<a href="gkyp_lemma.html">The gKYP lemma</a>'
     assert by[3]["status"] == "redrawn from recorded data" and by[3]["record_entry"] == "sigma_max"
     # the worst claim on a figure; a claim on "Fig. 10" is not a claim on paper Fig. 1
     assert by[7]["verdict"] == "FAIL" and by[4]["verdict"] == by[5]["verdict"] == "PARTLY"
@@ -108,34 +221,40 @@ def test_without_a_checklist_the_figures_say_so():
 
 def test_claim_rows():
     rows = claim_rows(record())
-    assert len(rows) == 5 and rows[0] == {"claim": "words on Sec. IV, text on paper Fig. 7",
-                                          "source": "Sec. IV, text on paper Fig. 7", "measure": "m",
-                                          "value": "0.1", "verdict": "PASS", "reason": "r"}
-    assert rows[-1]["value"] == "a: 1"
+    assert len(rows) == 5 and rows[0]["claim"] == (
+        "“words on Sec. IV, text on paper Fig. 7”<br><small>Sec. IV, text on paper Fig. 7</small>")
+    assert (rows[0]["value"], rows[0]["verdict"], rows[0]["reason"]) == ("0.1", "PASS", "r")
+    assert rows[-1]["value"] == '<ul class="kv"><li>a: 1</li></ul>'
 
 
 def test_finding_rows_are_the_new_entries():
-    assert [r["id"] for r in finding_rows(record())] == ["sweep", "hf_best"]
-    assert set(finding_rows(record())[0]) == {"id", "entry", "source", "note"}
+    rows = finding_rows(record(), {"stationary": "Stationary disturbances"})
+    assert [r["id"] for r in rows] == ["sweep", "hf_best"]
+    assert set(rows[0]) == {"id", "item", "finding", "link"}
 
 
-def test_errata_list_what_differs_and_what_fails():
+def test_errata_list_what_is_false_or_cannot_be_reproduced():
     rows = errata(record())
-    # the printed bound that cannot be reproduced, then the two failing claims; matches, inputs and
-    # findings are not errata
+    # the bound that cannot be reproduced, the close bound whose inequality fails, the proof step that
+    # differs, then the two failing claims; the loose but true bound, matches, inputs, sentences (decided
+    # through their claims) and findings are not errata
     assert [(r["n"], r["where"], r["verdict"]) for r in rows] == [
-        (1, "Sec. IV", "not reproducible"), (2, "Sec. IV, text on paper Fig. 7", "FAIL"),
-        (3, "Sec. IV, text on paper Fig. 10", "FAIL")]
-    assert rows[0]["printed"] == "0.3443" and rows[1]["printed"] == "words on Sec. IV, text on paper Fig. 7"
-    assert errata(record(claims=False))[-1]["verdict"] == "not reproducible"
+        (1, "Sec. IV", "not reproducible"),
+        (2, "Sec. IV, the bound beside K_f2", "close; the printed inequality fails"),
+        (3, "Sec. III, Proposition 1", "differs"),
+        (4, "Sec. IV, text on paper Fig. 7", "FAIL"), (5, "Sec. IV, text on paper Fig. 10", "FAIL")]
+    assert rows[0]["printed"] == "0.3443" and rows[2]["ours"] == ""
+    assert rows[3]["printed"] == "words on Sec. IV, text on paper Fig. 7"
+    assert errata(record(claims=False))[-1]["where"] == "Sec. III, Proposition 1"
 
 
 def test_summary_counts_every_verdict():
     s = summary(record())
     assert list(s["entries"]) == list(VERDICTS) and list(s["claims"]) == list(CLAIM_VERDICTS)
-    assert s["entries"] == {"match": 0, "close": 1, "differs": 0, "not reproducible": 1, "input": 1, "new": 2}
+    assert s["entries"] == {"match": 1, "close": 2, "differs": 3, "not reproducible": 1, "input": 1, "new": 3}
+    assert s["kinds"] == {"printed number": 4, "proof step": 2, "sentences": 1, "input": 1, "finding": 3}
     assert s["claims"] == {"PASS": 2, "PARTLY": 1, "FAIL": 2}
-    assert (s["n_entries"], s["n_claims"], s["n_figures"]) == (5, 5, 8)
+    assert (s["n_entries"], s["n_claims"], s["n_figures"]) == (11, 5, 8)
     assert sum(s["figures"].values()) == 8 and s["figures"]["redrawn from recorded data"] == 2
     none = summary(record(claims=False))
     assert none["claims"] is None and none["n_claims"] == 0
@@ -167,17 +286,15 @@ def test_claims_sentence_counts_or_says_the_checklist_is_missing():
     assert "no claims checklist" in claims_sentence(record(claims=False))
 
 
-def test_printed_rows_show_whole_values_and_link_the_page():
+def test_printed_rows_link_the_page_by_its_title():
     rec = {"entries": [
         {"id": "K_f1", "source": "Sec. IV", "paper": [[0.1048, 15.0897]], "chapter": "passive_controllers",
          "recomputed": [[0.104946831, 15.09821467]], "verdict": "close", "note": "n"},
         {"id": "long", "source": "Sec. IV", "paper": list(range(40)), "recomputed": [0.5] * 40,
          "verdict": "differs", "note": "n"}]}
-    rows = printed_rows(rec)
-    # the short form cuts printed digits (15.09); the full cell keeps every one
-    assert rows[0]["paper"] == "[[0.1048, 15.09]]" and rows[0]["paper_full"] == "[[0.1048, 15.0897]]"
-    assert rows[0]["ours_full"] == "[[0.104946831, 15.09821467]]"
-    assert rows[0]["entry"] == '<a href="passive_controllers.html">K_f1</a>'
-    # a long value is folded, whole, in a details element; an entry without a page is plain text
-    assert rows[1]["paper_full"].startswith("<details><summary>[0, 1, 2, 3, 4, 5, …] (40 values)")
-    assert ", 39]</span></details>" in rows[1]["paper_full"] and rows[1]["entry"] == "long"
+    rows = printed_rows(rec, {"passive_controllers": "Passive controllers"})
+    assert rows[0]["link"] == '<a href="passive_controllers.html">Passive controllers</a>'
+    assert printed_rows(rec)[0]["link"] == '<a href="passive_controllers.html">passive controllers</a>'
+    # a long value is folded, whole, in a details element; an entry without a page has no link
+    assert rows[1]["printed"].startswith("<details><summary>0, 1, 2, 3, … (40 values)")
+    assert ", 39</p></details>" in rows[1]["printed"] and rows[1]["link"] == ""

@@ -1,36 +1,64 @@
-"""The reproduction report: the whole record as table rows (the book's chapter ``report``).
+"""The reproduction report: the whole record as table rows in words (the book's chapter ``report``).
 
 Pure functions of a record dict, as :func:`fdsc.paper.record.reproduction_record` returns it or as
-``python -m fdsc reproduce`` writes it: the printed numbers beside ours, every paper figure with
-its page, status and the verdict of the claims made on it, the claims checklist, the findings the
-paper does not print, and the counts per verdict. A record without claims or without a figure's
-data is rendered as such (no row is dropped, the absence is stated). The record's format is the
-JSON Schema ``fdsc/paper/data/record.schema.json`` (:func:`record_schema`).
+``python -m fdsc reproduce`` writes it: one row per printed number, with the verdict of its value
+and, for a printed inequality, whether it holds; the proof steps and sentences checked; the printed
+inputs; every paper figure with its page, status and the verdict of the claims made on it; the
+claims checklist; the findings the paper does not print; the errata; and the numbers of the law
+on the disturbance estimate, stored study and build-time check side by side. Cells are trusted
+HTML in words (:mod:`fdsc.paper.appendix.report_values`): no raw dictionary, long detail folded.
+A record without claims or without a figure's data is rendered as such (the absence is stated).
+The record's format is the JSON Schema ``fdsc/paper/data/record.schema.json`` (:func:`record_schema`).
 """
 
 import html
 import json
-import re
-from collections import Counter
 from importlib import resources
 
+from fdsc.paper.appendix.report_counts import (
+    FINDING,
+    INPUT,
+    NUMBER,
+    PROOF_STEP,
+    SENTENCES,
+    claims_of,
+    claims_sentence,
+    counts_prose,
+    counts_sentence,
+    entries_of,
+    entry_kind,
+    figures_named,
+    printed_counts,
+    summary,
+)
+from fdsc.paper.appendix.report_law import LAW_ENTRY, law_rows
+from fdsc.paper.appendix.report_values import details, note_html, number_text, page_titles, value_html, words
 from fdsc.paper.record import PAPER_FIGURES, figure_status
-from fdsc.paper.shared.report import compact
-from fdsc.paper.shared.verdict import CLAIM_VERDICTS, VERDICTS, worst_verdict
+from fdsc.paper.shared.verdict import CLAIM_VERDICTS, worst_verdict
 
 __all__ = [
     "NO_CLAIM",
     "NO_CHECKLIST",
+    "LAW_ENTRY",
+    "OURS_DIGITS",
     "record_schema",
     "figures_named",
-    "printed_rows",
-    "full_value",
+    "entry_kind",
     "entry_link",
+    "inequality_cell",
+    "printed_rows",
+    "step_rows",
+    "input_rows",
     "figure_rows",
     "claim_rows",
     "finding_rows",
     "errata",
+    "law_rows",
+    "page_titles",
     "summary",
+    "printed_counts",
+    "counts_prose",
+    "counts_sentence",
     "claims_sentence",
 ]
 
@@ -41,7 +69,8 @@ NO_CLAIM = "no claim"
 #: Verdict of a figure when the record has no claims checklist at all.
 NO_CHECKLIST = "no checklist"
 
-_FIGURES = re.compile(r"\bpaper Figs?\.\s*(\d+(?:\s*(?:,|and|–|-)\s*\d+)*)\b")
+#: Significant digits of our values beside a printed number (the record keeps ten).
+OURS_DIGITS = 5
 
 
 def record_schema():
@@ -61,69 +90,95 @@ def record_schema():
     return json.loads(path.read_text(encoding="utf-8"))
 
 
-def figures_named(source):
-    """The paper figures a source names ("paper Fig. 7", "paper Figs. 4–6", "paper Figs. 7 and 8").
+def entry_link(entry, titles=None):
+    """A link to the book page that computes an entry, named by the page's title (trusted HTML).
 
     Parameters
     ----------
-    source : str
-        A claim's or an entry's ``source``.
+    entry : dict
+        A record entry; its ``chapter`` (a page's file stem), if any, is the link's target.
+    titles : dict, optional
+        ``{page: title}``; a page without one is named by its file stem in words.
 
     Returns
     -------
-    set of int
+    str
+        An HTML anchor, or ``""`` if the entry names no page.
 
     Examples
     --------
-    >>> figures_named("Sec. IV, text on paper Fig. 7"), figures_named("paper Fig. 10")
-    ({7}, {10})
-    >>> sorted(figures_named("paper Figs. 4–6 and the Abstract")), figures_named("Abstract")
-    ([4, 5, 6], set())
+    >>> entry_link({"id": "K_f1", "chapter": "passive_controllers"})
+    '<a href="passive_controllers.html">passive controllers</a>'
+    >>> entry_link({"chapter": "gkyp_lemma"}, {"gkyp_lemma": "Lemma 1"}), entry_link({"id": "x"})
+    ('<a href="gkyp_lemma.html">Lemma 1</a>', '')
     """
-    found = set()
-    for group in _FIGURES.findall(source):
-        for part in re.split(r"\s*(?:,|and)\s*", group):
-            ends = [int(x) for x in re.split(r"\s*[–-]\s*", part)]
-            found.update(range(ends[0], ends[-1] + 1))
-    return found
+    page = entry.get("chapter")
+    if not page:
+        return ""
+    title = (titles or {}).get(page, page.replace("_", " "))
+    return f'<a href="{html.escape(page)}.html">{html.escape(title)}</a>'
 
 
-def _check_verdicts(items, allowed, kind, key):
-    for item in items:
-        if item.get("verdict") not in allowed:
-            raise ValueError(f"record: {kind} {item.get(key)!r} has verdict {item.get('verdict')!r}, "
-                             f"expected one of {allowed}")
-    return items
+def _distinct(a, b):
+    for digits in range(4, 11):
+        x, y = number_text(a, digits), number_text(b, digits)
+        if x != y:
+            return x, y
+    return x, y
 
 
-def _entries(record):
-    entries = record.get("entries") if isinstance(record, dict) else None
-    if not isinstance(entries, list):
-        raise ValueError("record must be a dict with a list 'entries' (the reproduction record), but found "
-                         f"{type(record).__name__}")
-    return _check_verdicts(entries, VERDICTS, "entry", "id")
+def inequality_cell(entry):
+    """Whether an entry's printed inequality holds, with the two numbers (trusted HTML).
+
+    Parameters
+    ----------
+    entry : dict
+        A record entry; its ``inequality`` (``quantity``, ``bound``, ``holds``), if any.
+
+    Returns
+    -------
+    str
+        ``"holds: q < b"`` or ``"fails: q ≥ b"`` (enough digits to tell them apart), ``"—"`` if
+        the printed value is not the bound of an inequality.
+
+    Examples
+    --------
+    >>> inequality_cell({"inequality": {"quantity": 0.40279, "bound": 0.4025, "holds": False}})
+    'fails: 0.4028 ≥ 0.4025'
+    >>> inequality_cell({"inequality": {"quantity": 0.40279, "bound": 0.7125, "holds": True}})
+    'holds: 0.4028 &lt; 0.7125'
+    >>> inequality_cell({})
+    '—'
+    """
+    ineq = entry.get("inequality")
+    if not ineq:
+        return "—"
+    q, b = _distinct(ineq["quantity"], ineq["bound"])
+    return html.escape(f"holds: {q} < {b}" if ineq["holds"] else f"fails: {q} ≥ {b}")
 
 
-def _claims(record):
-    """The record's claims, or None when it has no checklist."""
-    claims = record.get("claims")
-    return None if claims is None else _check_verdicts(claims, CLAIM_VERDICTS, "claim", "claim")
+def _item(entry):
+    """The entry's source in words, its note folded below it."""
+    return f"<b>{html.escape(words(entry['source']))}</b><br>{note_html(entry['note'])}"
 
 
-def printed_rows(record):
-    """One row per entry whose paper value is printed and compared (verdict not ``new``): the
-    printed value beside ours.
+def printed_rows(record, titles=None):
+    """One row per printed number (a number or a matrix the paper prints as a result), in words.
 
     Parameters
     ----------
     record : dict
         The reproduction record.
+    titles : dict, optional
+        ``{page: title}`` for the links (:func:`entry_link`).
 
     Returns
     -------
     list of dict
-        ``id, source, paper, ours, verdict, reason`` (values as compact text, see
-        :func:`fdsc.paper.shared.report.compact`), in the record's order.
+        ``id`` (not for display) and the trusted-HTML cells ``item`` (where the paper prints it,
+        the reason for the verdict folded below), ``printed`` (every printed digit), ``ours``
+        (:data:`OURS_DIGITS` significant digits), ``verdict`` (of the value), ``holds``
+        (:func:`inequality_cell`) and ``link``, in the record's order.
 
     Raises
     ------
@@ -133,92 +188,97 @@ def printed_rows(record):
     Examples
     --------
     >>> rec = {"entries": [
-    ...     {"id": "K", "source": "Sec. IV", "paper": [[0.1048, 15.0897]],
+    ...     {"id": "K", "source": "Sec. IV, K", "paper": [[0.1048, 15.0897]],
     ...      "recomputed": [[0.104946831, 15.09821467]], "verdict": "close", "note": "1e-3 off"},
-    ...     {"id": "x", "source": "ours", "paper": None, "recomputed": 1, "verdict": "new", "note": "n"}]}
-    >>> [(r["id"], r["paper"], r["ours"]) for r in printed_rows(rec)]
-    [('K', '[[0.1048, 15.09]]', '[[0.1049, 15.1]]')]
+    ...     {"id": "s", "source": "proof", "paper": "w >= 0", "recomputed": {}, "verdict": "match",
+    ...      "note": "n"}]}
+    >>> [(r["id"], r["verdict"], r["holds"]) for r in printed_rows(rec)]
+    [('K', 'close', '—')]
     """
-    return [{"id": e["id"], "entry": entry_link(e), "source": e["source"],
-             "paper": compact(e["paper"]), "paper_full": full_value(e["paper"]),
-             "ours": compact(e["recomputed"]), "ours_full": full_value(e["recomputed"]),
-             "verdict": e["verdict"], "reason": e["note"]}
-            for e in _entries(record) if e["paper"] is not None and e["verdict"] != "new"]
+    return [{"id": e["id"], "item": _item(e), "printed": value_html(e["paper"]),
+             "ours": value_html(e["recomputed"], OURS_DIGITS), "verdict": e["verdict"],
+             "holds": inequality_cell(e), "link": entry_link(e, titles)}
+            for e in entries_of(record) if entry_kind(e) == NUMBER]
 
 
-def full_value(value):
-    """A record value as HTML for a table cell, never cut: numbers to ten significant digits
-    (as the record keeps them), so a printed number shows every digit printed; a long value
-    (a matrix, a list, a dict) shows its short form (:func:`fdsc.paper.shared.report.compact`) with the
-    whole value in a ``<details>`` element below it.
+def step_rows(record, titles=None):
+    """One row per proof step or group of sentences checked against the paper's words.
 
     Parameters
     ----------
-    value : object
-        A record value.
+    record : dict
+        The reproduction record.
+    titles : dict, optional
+        ``{page: title}`` for the links.
 
     Returns
     -------
-    str
-        Trusted HTML (every part escaped).
+    list of dict
+        ``id`` (not for display), ``kind`` (:data:`~fdsc.paper.appendix.report_counts.PROOF_STEP`
+        or :data:`~fdsc.paper.appendix.report_counts.SENTENCES`) and the trusted-HTML cells
+        ``item`` (the source, the reason folded below), ``printed`` (the paper's words),
+        ``verdict`` and ``link``; proof steps first, then the sentences.
 
     Examples
     --------
-    >>> full_value(15.0897)
-    '15.0897'
-    >>> full_value(list(range(30))).startswith("<details><summary>[0, 1, 2, 3, 4, 5, …] (30 values)")
+    >>> rec = {"entries": [{"id": "p", "source": "proof of Prop. 1", "paper": "w >= 0",
+    ...                     "recomputed": {"grid": 8}, "verdict": "match", "note": "n"}]}
+    >>> [(r["kind"], r["printed"]) for r in step_rows(rec)]
+    [('proof step', 'w ≥ 0')]
+    """
+    entries = entries_of(record)
+    return [{"id": e["id"], "kind": kind, "item": _item(e), "printed": value_html(e["paper"]),
+             "verdict": e["verdict"], "link": entry_link(e, titles)}
+            for kind in (PROOF_STEP, SENTENCES) for e in entries if entry_kind(e) == kind]
+
+
+def input_rows(record, titles=None):
+    """One row per printed input (model, bands, signals, parameters), used as printed.
+
+    Parameters
+    ----------
+    record : dict
+        The reproduction record.
+    titles : dict, optional
+        ``{page: title}`` for the links.
+
+    Returns
+    -------
+    list of dict
+        Trusted-HTML cells ``item`` (what, with how it is used folded below), ``printed`` (the
+        values, folded) and ``link``.
+
+    Examples
+    --------
+    >>> rec = {"entries": [{"id": "m", "source": "Sec. IV, model", "paper": {"A": [[1.0]]},
+    ...                     "recomputed": {"A": [[1.0]]}, "verdict": "input", "note": "as printed"}]}
+    >>> input_rows(rec)[0]["printed"].startswith("<details><summary>the printed values")
     True
     """
-    whole = compact(value, digits=10, max_items=10**6, max_chars=10**9)
-    short = compact(value)
-    if len(whole) <= 60 or whole == short:
-        return html.escape(whole)
-    return (f"<details><summary>{html.escape(short)}</summary>"
-            f"<span style='overflow-wrap:anywhere'>{html.escape(whole)}</span></details>")
+    return [{"item": _item(e), "printed": details("the printed values", value_html(e["paper"])),
+             "link": entry_link(e, titles)}
+            for e in entries_of(record) if entry_kind(e) == INPUT]
 
 
-def entry_link(entry):
-    """The entry's id as a link to the book page that computes it (trusted HTML).
-
-    Parameters
-    ----------
-    entry : dict
-        A record entry; its ``chapter`` (a page's file stem), if any, is the link's target.
-
-    Returns
-    -------
-    str
-        An HTML anchor, or the escaped id if the entry names no page.
-
-    Examples
-    --------
-    >>> entry_link({"id": "K_f1", "chapter": "passive_controllers"})
-    '<a href="passive_controllers.html">K_f1</a>'
-    >>> entry_link({"id": "x"})
-    'x'
-    """
-    page = entry.get("chapter")
-    name = html.escape(entry["id"])
-    return f'<a href="{html.escape(page)}.html">{name}</a>' if page else name
-
-
-def figure_rows(record):
+def figure_rows(record, titles=None):
     """Every paper figure: what it shows, a link to its page, its data, status and claims' verdict.
 
     Parameters
     ----------
     record : dict
         The reproduction record.
+    titles : dict, optional
+        ``{page: title}`` for the links.
 
     Returns
     -------
     list of dict
         One row per figure of :data:`fdsc.paper.record.PAPER_FIGURES` (paper Figs. 1–8):
-        ``figure`` ("paper Fig. N"), ``number``, ``shows``, ``chapter``, ``link`` (an HTML anchor
-        to ``<chapter>.html``, empty if no chapter redraws it), ``record_entry``, ``status`` (of
-        :func:`fdsc.paper.record.figure_status`, e.g. ``not reproduced yet``) and ``verdict``: the
-        worst verdict of the claims whose source names the figure, :data:`NO_CLAIM` if none does,
-        :data:`NO_CHECKLIST` if the record has no claims.
+        ``figure`` ("paper Fig. N"), ``number``, ``shows`` (in words), ``chapter``, ``link`` (an
+        HTML anchor to ``<chapter>.html``, empty if no chapter redraws it), ``record_entry``,
+        ``status`` (of :func:`fdsc.paper.record.figure_status`, e.g. ``not reproduced yet``) and
+        ``verdict``: the worst verdict of the claims whose source names the figure,
+        :data:`NO_CLAIM` if none does, :data:`NO_CHECKLIST` if the record has no claims.
 
     Examples
     --------
@@ -226,21 +286,20 @@ def figure_rows(record):
     ...        "claims": [{"claim": "c", "source": "Sec. IV, text on paper Fig. 3", "verdict": "PARTLY"}]}
     >>> row = figure_rows(rec)[2]
     >>> row["link"], row["status"], row["verdict"]
-    ('<a href="gkyp_lemma.html">gkyp_lemma</a>', 'redrawn from recorded data', 'PARTLY')
+    ('<a href="gkyp_lemma.html">gkyp lemma</a>', 'redrawn from recorded data', 'PARTLY')
     >>> figure_rows(rec)[0]["verdict"], figure_rows({"entries": [], "figures": {}})[6]["verdict"]
     ('no claim', 'no checklist')
     """
-    claims = _claims(record)
+    claims = claims_of(record)
     rows = []
     for number, row in zip(PAPER_FIGURES, figure_status(record), strict=True):
-        chapter = row["chapter"]
-        link = f'<a href="{html.escape(chapter)}.html">{html.escape(chapter)}</a>' if chapter else ""
         if claims is None:
             verdict = NO_CHECKLIST
         else:
             named = [c["verdict"] for c in claims if number in figures_named(c["source"])]
             verdict = worst_verdict(named, CLAIM_VERDICTS) if named else NO_CLAIM
-        rows.append({**row, "number": number, "link": link, "verdict": verdict})
+        rows.append({**row, "shows": words(row["shows"]), "number": number,
+                     "link": entry_link(row, titles), "verdict": verdict})
     return rows
 
 
@@ -255,7 +314,9 @@ def claim_rows(record):
     Returns
     -------
     list of dict
-        ``claim, source, measure, value`` (compact text), ``verdict, reason``.
+        Trusted-HTML cells ``claim`` (the paper's words and where), ``measure`` (how they are
+        read, folded when long), ``value`` (in words, four significant digits), ``verdict`` and
+        ``reason`` (folded when long).
 
     Raises
     ------
@@ -269,38 +330,48 @@ def claim_rows(record):
     >>> [(r["value"], r["verdict"]) for r in claim_rows(rec)]
     [('0.04811', 'FAIL')]
     """
-    return [{"claim": c["claim"], "source": c["source"], "measure": c["measure"],
-             "value": compact(c["value"]), "verdict": c["verdict"], "reason": c["reason"]}
-            for c in _claims(record) or []]
+    return [{"claim": f"“{html.escape(words(c['claim']))}”<br><small>{html.escape(c['source'])}</small>",
+             "measure": note_html(c["measure"]), "value": value_html(c["value"], 4),
+             "verdict": c["verdict"], "reason": note_html(c["reason"])}
+            for c in claims_of(record) or []]
 
 
-def finding_rows(record):
-    """The findings the paper does not print: entries with verdict ``new``.
+def finding_rows(record, titles=None):
+    """The findings the paper does not print: entries with verdict ``new``, but :data:`LAW_ENTRY`
+    (shown beside the stored study by :func:`law_rows`).
 
     Parameters
     ----------
     record : dict
         The reproduction record.
+    titles : dict, optional
+        ``{page: title}`` for the links.
 
     Returns
     -------
     list of dict
-        ``id, source, note``, in the record's order.
+        ``id`` (not for display) and the trusted-HTML cells ``item`` (what it is derived from),
+        ``finding`` (the note, folded when long) and ``link``, in the record's order.
 
     Examples
     --------
     >>> rec = {"entries": [{"id": "x", "source": "s", "paper": None, "recomputed": 1, "verdict": "new",
     ...                     "note": "n"}]}
     >>> finding_rows(rec)
-    [{'id': 'x', 'entry': 'x', 'source': 's', 'note': 'n'}]
+    [{'id': 'x', 'item': 's', 'finding': 'n', 'link': ''}]
     """
-    return [{"id": e["id"], "entry": entry_link(e), "source": e["source"], "note": e["note"]}
-            for e in _entries(record) if e["verdict"] == "new"]
+    return [{"id": e["id"], "item": html.escape(words(e["source"])), "finding": note_html(e["note"]),
+             "link": entry_link(e, titles)}
+            for e in entries_of(record) if entry_kind(e) == FINDING and e["id"] != LAW_ENTRY]
 
 
 def errata(record):
-    """The errata for the paper's authors: every printed number that differs or cannot be
-    reproduced, then every claim that fails, each with what decides it.
+    """The errata for the paper's authors: what it prints that is false or cannot be reproduced.
+
+    A printed number that differs or cannot be reproduced, unless it is the bound of a printed
+    inequality that holds (a true but loose bound is no error); a printed inequality that fails,
+    whatever its value's verdict; a proof step that differs; then every claim that fails. The
+    sentences on figures appear through their claims.
 
     Parameters
     ----------
@@ -310,8 +381,9 @@ def errata(record):
     Returns
     -------
     list of dict
-        ``n, where, printed, ours, verdict, why`` (values as compact text), printed numbers first
-        in the record's order, then the failing claims.
+        ``n`` and the trusted-HTML fields ``where``, ``printed``, ``ours`` (empty for words),
+        ``verdict`` and ``why``, printed numbers and proof steps first in the record's order, then
+        the failing claims.
 
     Raises
     ------
@@ -323,6 +395,9 @@ def errata(record):
     >>> rec = {"entries": [
     ...     {"id": "a", "source": "Sec. IV, K", "paper": 0.2, "recomputed": 0.119, "verdict": "differs",
     ...      "note": "bisected"},
+    ...     {"id": "e", "source": "Sec. IV, bound", "paper": 0.7125, "recomputed": 0.4028,
+    ...      "verdict": "differs", "note": "n",
+    ...      "inequality": {"statement": "s", "quantity": 0.4028, "bound": 0.7125, "holds": True}},
     ...     {"id": "b", "source": "Sec. IV", "paper": 1.0, "recomputed": 1.0, "verdict": "match",
     ...      "note": "equal"}],
     ...     "claims": [{"claim": "c", "source": "Abstract", "measure": "m", "value": 3.0,
@@ -330,78 +405,19 @@ def errata(record):
     >>> [(r["n"], r["where"], r["verdict"]) for r in errata(rec)]
     [(1, 'Sec. IV, K', 'differs'), (2, 'Abstract', 'FAIL')]
     """
-    rows = [{"where": e["source"], "printed": compact(e["paper"]), "ours": compact(e["recomputed"]),
-             "verdict": e["verdict"], "why": e["note"]}
-            for e in _entries(record) if e["verdict"] in ("differs", "not reproducible")]
-    rows += [{"where": c["source"], "printed": c["claim"], "ours": compact(c["value"]),
-              "verdict": c["verdict"], "why": c["reason"]}
-             for c in _claims(record) or [] if c["verdict"] == "FAIL"]
+    rows = []
+    for e in entries_of(record):
+        kind, ineq = entry_kind(e), e.get("inequality")
+        bad = e["verdict"] in ("differs", "not reproducible")
+        if kind == NUMBER and ((bad and not (ineq and ineq["holds"])) or (ineq and not ineq["holds"])):
+            verdict = e["verdict"] + ("; the printed inequality fails" if ineq and not ineq["holds"] else "")
+            rows.append({"where": html.escape(words(e["source"])), "printed": value_html(e["paper"]),
+                         "ours": value_html(e["recomputed"], OURS_DIGITS), "verdict": verdict,
+                         "why": note_html(e["note"])})
+        elif kind == PROOF_STEP and bad:
+            rows.append({"where": html.escape(words(e["source"])), "printed": value_html(e["paper"]),
+                         "ours": "", "verdict": e["verdict"], "why": note_html(e["note"])})
+    rows += [{"where": html.escape(c["source"]), "printed": html.escape(words(c["claim"])),
+              "ours": value_html(c["value"], 4), "verdict": c["verdict"], "why": note_html(c["reason"])}
+             for c in claims_of(record) or [] if c["verdict"] == "FAIL"]
     return [{"n": k, **r} for k, r in enumerate(rows, start=1)]
-
-
-def summary(record):
-    """Counts per verdict of the entries and of the claims, and per status of the figures.
-
-    Parameters
-    ----------
-    record : dict
-        The reproduction record.
-
-    Returns
-    -------
-    dict
-        ``entries``: ``{verdict: count}`` over :data:`fdsc.paper.shared.verdict.VERDICTS` (zeros
-        included, in that order); ``claims``: ``{verdict: count}`` over
-        :data:`fdsc.paper.shared.verdict.CLAIM_VERDICTS`, or None if the record has no checklist;
-        ``figures``: ``{status: count}`` over the paper's figures; ``n_entries``, ``n_claims``
-        (0 without a checklist) and ``n_figures``.
-
-    Raises
-    ------
-    ValueError
-        If the record has no list of entries, or a verdict is unknown.
-
-    Examples
-    --------
-    >>> s = summary({"entries": [{"id": "a", "verdict": "match"}, {"id": "b", "verdict": "new"}],
-    ...              "figures": {}})
-    >>> s["entries"]["match"], s["entries"]["new"], s["claims"], s["n_figures"]
-    (1, 1, None, 8)
-    """
-    entries, claims = _entries(record), _claims(record)
-    by_entry = Counter(e["verdict"] for e in entries)
-    by_claim = None if claims is None else Counter(c["verdict"] for c in claims)
-    figures = figure_status(record)
-    return {"entries": {v: by_entry[v] for v in VERDICTS}, "n_entries": len(entries),
-            "claims": None if by_claim is None else {v: by_claim[v] for v in CLAIM_VERDICTS},
-            "n_claims": 0 if claims is None else len(claims),
-            "figures": dict(Counter(r["status"] for r in figures)), "n_figures": len(figures)}
-
-
-def claims_sentence(record):
-    """One Markdown sentence on the claims checklist: its counts per verdict, or that it is missing.
-
-    Parameters
-    ----------
-    record : dict
-        The reproduction record.
-
-    Returns
-    -------
-    str
-
-    Examples
-    --------
-    >>> claims_sentence({"entries": [], "figures": {}, "claims": [
-    ...     {"claim": "c", "source": "Abstract", "verdict": "PARTLY"}]})
-    'The checklist holds 1 claims: 0 PASS, 1 PARTLY and 0 FAIL.'
-    >>> claims_sentence({"entries": [], "figures": {}})[:45]
-    'The record holds **no claims checklist**: the'
-    """
-    counts = summary(record)
-    if counts["claims"] is None:
-        return ("The record holds **no claims checklist**: the paper's claims are not checked in this "
-                "build.")
-    c = counts["claims"]
-    return (f"The checklist holds {counts['n_claims']} claims: {c['PASS']} PASS, {c['PARTLY']} PARTLY "
-            f"and {c['FAIL']} FAIL.")

@@ -58,6 +58,12 @@ _FREQ, _NEAREST, _HITS, _SEARCHED = ("frequency-domain candidates",
                                      "time domain, quantities searched")
 
 
+def _and(names):
+    if len(names) < 2:
+        return names[0] if names else "none"
+    return ", ".join(names[:-1]) + " and " + names[-1]
+
+
 @dataclass(frozen=True)
 class PrintedBound:
     """One printed bound, its one verdict and every reading tried (see :func:`printed_bounds`).
@@ -158,13 +164,16 @@ class PrintedBound:
         --------
         >>> pb = printed_bounds()
         >>> [pb[g].stated() for g in ("K_f2", "K_e")]  # doctest: +NORMALIZE_WHITESPACE
-        ['the band peak is within 0.07 % of the printed value (just above it)',
+        ['the band peak is within 0.07 % of the printed value but above it, so the printed
+         inequality fails for the printed gain',
          'the inequality holds, but the printed value is the band peak ×1.77, so it is not the
          peak the design attains']
         """
         if self.verdict in ("match", "close"):
             return (f"the band peak is within {pct(abs(self.peak - self.paper) / self.paper, 2)}"
-                    " of the printed value" + ("" if self.holds else " (just above it)"))
+                    " of the printed value" + (" and below it" if self.holds else
+                                                " but above it, so the printed inequality fails "
+                                                "for the printed gain"))
         if self.holds:
             return (f"the inequality holds, but the printed value is the band peak "
                     f"{times(1 / self.factor)}, so it is not the peak the design attains")
@@ -218,6 +227,25 @@ class PrintedBound:
                      f"{within} within 1 %).")
         return text
 
+    def inequality(self) -> dict:
+        """The printed inequality and whether it holds for the printed gain (for the record).
+
+        Returns
+        -------
+        dict
+            ``statement`` (in words), ``quantity`` (the band peak), ``bound`` (the printed
+            value), ``holds`` (quantity < bound).
+
+        Examples
+        --------
+        >>> ineq = printed_bounds()["K_e"].inequality()
+        >>> ineq["statement"], ineq["holds"]
+        ('σ_max(G(jω), K_e) < 0.7125 for every ω in the entire range Ω_e', True)
+        """
+        return {"statement": f"σ_max(G(jω), {self.gain}) < {self.paper} for every ω in "
+                             f"{_BAND_WORDS[self.band]}",
+                "quantity": float(self.peak), "bound": float(self.paper), "holds": bool(self.holds)}
+
     def to_entry(self, settings: dict) -> dict:
         """The record entry of this bound (``bound_f1``, ``bound_f2``, ``bound_f3``, ``bound_e``).
 
@@ -233,7 +261,7 @@ class PrintedBound:
         s = self.search
         return entry(
             BOUND_IDS[self.gain], f"Sec. IV, the bound printed beside {self.gain}", self.paper,
-            self.peak, self.verdict, self.note(settings),
+            self.peak, self.verdict, self.note(settings), inequality=self.inequality(),
             readings={
                 _STATED: self.peak, _LEMMA1: self.lemma1, _FREQ: dict(self.candidates),
                 _NEAREST: s.best.to_dict(), _HITS: [h.to_dict() for h in s.hits],
@@ -341,11 +369,17 @@ class PrintedBounds:
             ``{name: text}``: per gain ``<gain>_printed``, ``_peak``, ``_lemma1``, ``_factor``
             (peak / printed), ``_inverse`` (printed / peak), ``_verdict``, ``_stated``,
             ``_within``, ``_chance``, ``_hits``, ``_omega_peak``; ``n_close``, ``n_differs``,
+            ``n_hold``, ``n_fail`` (printed inequalities true and false for the printed gains),
+            ``hold_gains``, ``fail_gains``,
             ``verdicts`` (all four in one phrase), ``searched``, ``n_signals``, ``n_horizons``,
             ``horizon_first``, ``horizon_last``, ``dt_ms``, ``hit_gains``, ``hit_what``.
         """
         out = {"n_close": count(sum(b.verdict in ("match", "close") for b in self.bounds)),
                "n_differs": count(sum(b.verdict == "differs" for b in self.bounds)),
+               "n_hold": count(sum(b.holds for b in self.bounds)),
+               "n_fail": count(sum(not b.holds for b in self.bounds)),
+               "hold_gains": _and([b.gain for b in self.bounds if b.holds]),
+               "fail_gains": _and([b.gain for b in self.bounds if not b.holds]),
                "verdicts": ", ".join(f"{b.gain} ({b.paper}): {b.verdict}" for b in self.bounds),
                "searched": count(self.bounds[0].search.n_candidates),
                "n_signals": count(len(self.settings["signals"])),

@@ -1,0 +1,77 @@
+"""The reproduction report's numbers of the law on the disturbance estimate: one source for them.
+
+The landing page, the chapters and the report give the law's numbers from the stored study
+(:func:`fdsc.paper.pays.disturbance_law.load_full`, computed at a recorded commit); the record
+recomputes the same procedure on the first few of its draws when the book is built, as a check.
+:func:`law_rows` sets the two side by side, each labelled.
+"""
+
+import html
+
+from fdsc.paper.appendix.report_counts import entries_of
+from fdsc.paper.shared.prose import count, pct, times
+
+__all__ = ["LAW_ENTRY", "law_rows"]
+
+#: The entry of the law on the disturbance estimate: the build-time check of the stored study,
+#: shown beside it (:func:`law_rows`), not among the findings.
+LAW_ENTRY = "supervisor"
+
+_LAW_EXAMPLES = {"aircraft": "aircraft", "generic": "generic example"}
+
+
+def _law_row(study, example, r):
+    return {"study": study, "example": _LAW_EXAMPLES.get(example, example),
+            "scored": count(int(r["draws_test"])), "chosen": html.escape(r["fixed_in_advance"]),
+            "median": times(r["median_ratio_vs_fixed_in_advance"]),
+            "wins": pct(r["win_rate_vs_fixed_in_advance"]),
+            "clairvoyant": times(r["reference_median_ratio"])}
+
+
+def law_rows(record, full=None, *, fresh=True):
+    """The law on the disturbance estimate: the stored study's numbers, labelled with its commit,
+    then the record's build-time check of it, per example.
+
+    Parameters
+    ----------
+    record : dict
+        The reproduction record (its entry :data:`LAW_ENTRY`: the check).
+    full : dict, optional
+        The stored study (:func:`fdsc.paper.pays.disturbance_law.load_full`); None if absent.
+    fresh : bool, optional
+        The sources of this build are those the stored study was computed with.
+
+    Returns
+    -------
+    list of dict
+        Trusted-HTML cells ``study`` (which numbers: the stored study with its draws and commit,
+        or the build-time check with its draws), ``example``, ``scored`` (draws scored),
+        ``chosen`` (the fixed controller chosen in advance), ``median`` (the law's median energy
+        over that controller's), ``wins`` (share of scored draws with less energy) and
+        ``clairvoyant`` (the median of clairvoyant switching at the breaks).
+
+    Examples
+    --------
+    >>> one = {"draws_test": 6, "draws_train": 6, "fixed_in_advance": "tuned",
+    ...        "median_ratio_vs_fixed_in_advance": 0.96, "win_rate_vs_fixed_in_advance": 1.0,
+    ...        "reference_median_ratio": 0.959}
+    >>> rec = {"entries": [{"id": "supervisor", "verdict": "new", "recomputed": {"aircraft": one}}]}
+    >>> full = {"n": 500, "commit": "048c47d821e7", "aircraft": dict(one, draws_test=250)}
+    >>> [(r["scored"], r["median"]) for r in law_rows(rec, full)]
+    [('250', '×0.960'), ('6', '×0.960')]
+    >>> law_rows(rec, full)[0]["study"]
+    'stored study: 500 draws per example, computed at commit 048c47d'
+    """
+    rows = []
+    if full is not None:
+        label = (f"stored study: {count(int(full['n']))} draws per example, computed at commit "
+                 f"{html.escape(str(full['commit']).split()[0][:7])}"
+                 + ("" if fresh else " (the sources have changed since)"))
+        rows += [_law_row(label, e, full[e]) for e in _LAW_EXAMPLES if e in full]
+    check = next((e for e in entries_of(record) if e["id"] == LAW_ENTRY), None)
+    for example, r in (check or {}).get("recomputed", {}).items():
+        n = int(r["draws_test"]) + int(r.get("draws_train", 0))
+        label = (f"build-time check: the first {count(n)} of the stored study's draws, recomputed when "
+                 "this page is built (same procedure and seed, a shorter search for the tuned designs)")
+        rows.append(_law_row(label, example, r))
+    return rows
