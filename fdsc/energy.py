@@ -1,7 +1,7 @@
 """Frequency-dependent excited energy and power functions (FD-EEF, FD-EPF), Sec. III.
 
 For a real state trajectory the quadratic form ``[ẋ; x]* (Ψ ⊗ Q) [ẋ; x]`` sees only
-``Re Ψ`` (the imaginary part of a Hermitian Ψ ⊗ Q multiplies ``ẋᵀQx − xᵀQẋ = 0``), so
+``Re Ψ`` (the imaginary part of a Hermitian Ψ ⊗ Q multiplies ``ẋᵀQx − xᵀQẋ = 0``), so::
 
     P_t(Ω, Q, t) = ψ11 ẋᵀQẋ + 2 Re ψ12 ẋᵀQx + ψ22 xᵀQx          (instantaneous FD-EPF)
     S(Ω, Q, T_l) = ∫_{T_l} P_t dt,   P_a = S / |T_l|                (FD-EEF, average FD-EPF)

@@ -134,12 +134,12 @@ def supervise_batch(cases, *, executor=None, chunksize: int | None = None) -> li
         If ``executor`` cannot run the chunks (as in :func:`fdsc.simulate_batch`; the message
         starts with ``executor``): shut down, a broken process pool, or a closed Dask client.
     Exception
-        The first failing case's own exception, its message prefixed with ``cases[c]: ``.
+        The first failing case's own exception, its message prefixed with ``"cases[c]: "``.
 
     Warns
     -----
     UnstableRunWarning
-        As each run warns, prefixed with ``cases[c]: ``.
+        As each run warns, prefixed with ``"cases[c]: "``.
 
     Examples
     --------

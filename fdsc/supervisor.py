@@ -56,6 +56,8 @@ from .realization import band_filter, copies_loop
 
 __all__ = ["Supervisor", "LAWS", "supervise"]
 
+#: The laws a :class:`Supervisor` runs: "cost" (the predictive-cost supervisor, the default) and
+#: "band_power" (the gain of the band whose filtered estimate ŵ has the largest fading energy).
 LAWS = ("cost", "band_power")
 
 

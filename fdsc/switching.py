@@ -2,7 +2,7 @@
 given Q's.
 
 For closed-loop modes ``(A_i, B, C_i, D)`` with ranges Ω_i (matrices Ψ_i, real for LF/HF) and
-every ordered pair i ≠ j:
+every ordered pair i ≠ j::
 
     (T1-1)  [A_i; I]ᵀ (Φ⊗P_i^s + Ψ_i⊗Q_i − Ψ_j⊗Q_j) [A_i; I] < 0,              P_i^s > 0,
     (T1-2)  [A_i B; I 0]ᵀ (Φ⊗P_i + Ψ_i⊗Q_i − Ψ_j⊗Q_j) [A_i B; I 0]

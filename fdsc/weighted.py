@@ -5,7 +5,7 @@ of :func:`fdsc.pareto_front`). A controller with states can do better: it may ac
 in one band and like another gain in the other. The classical way to design one (Zames 1981;
 the multi-band idea of Iwasaki and Hara 2005 in its weighted form) weights the regulated output
 by a filter ``W(s)`` that is large where attenuation matters and synthesizes H∞ state feedback
-for the weighted plant:
+for the weighted plant::
 
     ‖W G‖∞ < γ   ⇒   σ_max(G(jω)) < γ / |W(jω)|  at every ω.
 

@@ -38,7 +38,7 @@ __all__ = [
 #: (damper c); weights of the appendage's velocity and of the control effort in z.
 PLANT_PARAMETERS = {"m1": 1.0, "m2": 0.3, "k0": 1.0, "k": 50.0, "c0": 0.05, "c": 0.15,
                     "w_v": 0.3, "rho": 0.05}
-#: Band limits (rad/s): LF is |ω| ≤ W_L, HF is |ω| ≥ W_H.
+#: Band limits (rad/s): LF is ``|ω| ≤ W_L``, HF is ``|ω| ≥ W_H``.
 W_L, W_H = 1.0, 10.0
 #: ε of the LF synthesis (the default 1e-2 of fdsc.synthesize costs 33 % in band; see the study).
 LF_EPSILON = 1.0

@@ -49,7 +49,7 @@ MAX_STEPS = 30_000
 DT_FRACTION = 0.05
 
 
-#: The horizon in slowest time constants 1/min |Re λ|.
+#: The horizon in slowest time constants ``1/min |Re λ|``.
 SLOW_CONSTANTS = 10.0
 
 
@@ -125,7 +125,7 @@ class SearchCase:
     def grid(self) -> tuple[float, float]:
         """Step and horizon (s) of the d = 0 runs.
 
-        T = :data:`SLOW_CONSTANTS` / min |Re λ| over both modes; dt = :data:`DT_FRACTION` /
+        T = :data:`SLOW_CONSTANTS` / ``min |Re λ|`` over both modes; dt = :data:`DT_FRACTION` /
         max ‖A_i‖₂, enlarged if needed so that T takes at most :data:`MAX_STEPS` (even) steps.
 
         Returns

@@ -12,7 +12,7 @@
    moves them.
 2. **Convergence.** Runs at dt, dt/2, …, dt/16: energy, time shares, switch count × dt (→ the
    time spent in the chattering set), the share of mode 1 inside that set (→ ½) and the
-   actuator rate |Δu|/dt at the switches (which grows like 1/dt).
+   actuator rate ``|Δu|/dt`` at the switches (which grows like 1/dt).
 3. **Well-posed laws** (:class:`fdsc.SwitchRule`): hysteresis (relative margin), minimum dwell
    time and a moving-window FD-EEF law (paper Remark 6), each against its parameter on the
    paper's stationary, mixed and piecewise cases, at dt and dt/2.

@@ -28,7 +28,7 @@ __all__ = [
 
 
 #: Parameter grids of the well-posed laws: hysteresis with a relative margin h
-#: (s_j − s_a > h(|s_j| + |s_a|)), hysteresis with an absolute margin h (s_j − s_a > h, in the
+#: (``s_j − s_a > h(|s_j| + |s_a|)``), hysteresis with an absolute margin h (s_j − s_a > h, in the
 #: units of the printed Q's scores), minimum dwell time and moving window (seconds).
 LAW_GRIDS = {"hysteresis": (0.1, 0.5, 0.9, 0.99),
              "hysteresis_abs": (1e3, 1e4, 1e5, 1e6, 1e8),

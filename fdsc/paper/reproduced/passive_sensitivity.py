@@ -186,7 +186,7 @@ def epsilon_sensitivity(kind: str, epsilons: ArrayLike = EPSILON_GRID) -> Epsilo
 
 
 def _out_of_band_peak(cl, band):
-    """Peak of σ_max outside an HF band, i.e. over |ω| ≤ ϖ_h."""
+    """Peak of σ_max outside an HF band, i.e. over ``|ω| ≤ ϖ_h``."""
     return band_peak(cl, Band.lf(band.lower)).gamma
 
 
@@ -201,7 +201,7 @@ class SigmaScan:
     gamma_lmi, gamma_sweep : (k,) ndarray
         Certified γ and in-band peak of the designed closed loop.
     out_of_band : (k,) ndarray
-        Peak of σ_max outside the band, over |ω| ≤ ϖ_h.
+        Peak of σ_max outside the band, over ``|ω| ≤ ϖ_h``.
     K : (k, m, n) ndarray
         The gains.
     status : tuple of str
@@ -273,7 +273,7 @@ class HFBest:
     in_band : float
         Its in-band peak (sweep).
     out_of_band : float
-        Its peak over |ω| ≤ ϖ_h.
+        Its peak over ``|ω| ≤ ϖ_h``.
     K_f3_in_band, K_f3_out_of_band : float
         The same two peaks for the printed K_f3.
     scan : SigmaScan

@@ -91,9 +91,9 @@ class LFOutputClaims:
     ratio_ours_lf : float
         Energy of FDSC with our Q's over that of PassC-LF (NaN if not run).
     peak_ratio_hf : (3,) ndarray
-        Peak |z_i| of PassC-HF over the larger peak of PassC-EF and PassC-LF, per output.
+        Peak ``|z_i|`` of PassC-HF over the larger peak of PassC-EF and PassC-LF, per output.
     peak_ratio_fdsc_hf : (3,) ndarray
-        Peak |z_i| of FDSC over that of PassC-HF, per output.
+        Peak ``|z_i|`` of FDSC over that of PassC-HF, per output.
     claim_smallest, claim_thousand, claim_similar : Claim
         "PassC-LF is the smallest"; "PassC-HF is up to a thousand times greater"; "FDSC …
         similar to PassC-LF".
@@ -229,12 +229,12 @@ class HFOutputClaims:
 
     @property
     def q_min(self) -> float:
-        """Smallest peak of |q| over the four controllers."""
+        """Smallest peak of ``|q|`` over the four controllers."""
         return min(self.q_peak.values())
 
     @property
     def q_max(self) -> float:
-        """Largest peak of |q| over the four controllers."""
+        """Largest peak of ``|q|`` over the four controllers."""
         return max(self.q_peak.values())
 
     def prose(self) -> dict:
@@ -244,7 +244,7 @@ class HFOutputClaims:
         -------
         dict
             ``{name: text}``: ``ratio_fdsc_hf`` (energy factor), ``q_range_min``,
-            ``q_range_max`` (peaks of |q|), ``q_ratio`` (largest over smallest), ``q_verdict``,
+            ``q_range_max`` (peaks of ``|q|``), ``q_ratio`` (largest over smallest), ``q_verdict``,
             ``coincident_verdict``.
         """
         return {"ratio_fdsc_hf": times(self.ratio_fdsc_hf), "q_range_min": num(self.q_min),

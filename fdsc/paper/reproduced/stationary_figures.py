@@ -81,7 +81,7 @@ class StationaryRuns:
     l2_steady : dict
         ``{fixed-gain controller: the limit of its running ratio}`` (closed form).
     peak : dict
-        ``{controller: (3,) ndarray}``: max |z_i| over the run.
+        ``{controller: (3,) ndarray}``: max ``|z_i|`` over the run.
     switches : dict
         ``{FDSC variant: number of switches}``.
     share : dict
