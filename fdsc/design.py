@@ -1,11 +1,13 @@
 """An FDSC design: a plant, one state-feedback gain per frequency range, the switching law's Q's
-and their Theorem 1 certificate, in one object that simulates itself.
+and a solution of Theorem 1's LMIs for them, in one object that simulates itself.
 
 The paper's controller (Sec. III, paper eq. (30)) switches between I state-feedback gains
 ``u = K_σ x``; mode i is meant for disturbances that dominate the range Ω_i, and the law (paper
 eq. (31)) picks the mode whose weighted FD-EPF ``[ẋ; x]ᵀ (Ψ_i ⊗ Q_i) [ẋ; x]`` is largest. The
-Q's are either given (and certified by Theorem 1, paper eqs. (33)-(34)) or designed by paper
-Remark 4 (paper eq. (53)) around the in-band mode.
+Q's are either given (with the least γ's for which Theorem 1's LMIs, paper eqs. (33)-(34), are
+feasible) or designed by paper Remark 4 (paper eq. (53)) around the in-band mode. The LMIs'
+solution is what the paper calls its certificate; it bounds nothing on its own (Theorem 1's
+statement (1) fails for modes that satisfy them, see the book's chapter on Theorem 1).
 """
 
 from dataclasses import dataclass, replace
@@ -55,7 +57,7 @@ def _gains(gains, plant):
 
 @dataclass(frozen=True)
 class FDSC:
-    """A frequency-dependent switching controller for one plant, certified by Theorem 1.
+    """A frequency-dependent switching controller for one plant, with a solution of Theorem 1's LMIs.
 
     Build it with :meth:`from_gains` (gains given) or :meth:`synthesize` (gains synthesized on
     the bands); the constructor itself takes a finished certificate.
@@ -92,7 +94,7 @@ class FDSC:
     Q : tuple of (n, n) ndarray
         The Q_i of the law (from the certificate).
     gammas : (I,) ndarray
-        γ_i certified by Theorem 1.
+        γ_i for which Theorem 1's LMIs are feasible (not a bound on the switched loop).
     modes : tuple of LTISystem
         The closed loops ``(A + B2 K_i, B1, C + D2 K_i, D1)``.
 
@@ -167,7 +169,7 @@ class FDSC:
         UnstableError
             If a gain does not stabilize the plant.
         InfeasibleError
-            If Theorem 1 cannot certify the given Q's, or no Q's exist for this γ_tol.
+            If Theorem 1's LMIs are infeasible for the given Q's, or no Q's exist for this γ_tol.
         SolverError
             If a solve fails.
         DimensionError
@@ -177,8 +179,8 @@ class FDSC:
 
         Notes
         -----
-        Given Q's are certified by Theorem 1, paper eqs. (33)-(34); omitted ones are designed by
-        paper Remark 4, paper eq. (53).
+        Given Q's get the least γ's for which Theorem 1's LMIs (paper eqs. (33)-(34)) are
+        feasible; omitted ones are designed by paper Remark 4, paper eq. (53).
         """
         plant = as_plant(plant, n_disturbances=n_disturbances)
         gains = _gains(gains, plant)
@@ -256,7 +258,7 @@ class FDSC:
 
     @property
     def gammas(self) -> np.ndarray:
-        """γ_i certified by Theorem 1, an (I,) ndarray."""
+        """γ_i for which Theorem 1's LMIs are feasible, an (I,) ndarray."""
         return np.asarray(self.certificate.gammas)
 
     @property

@@ -1,5 +1,5 @@
-"""Theorem 1: the LMIs (T1-1), (T1-2) for I modes, the Q design of paper Remark 4, certification of
-given Q's.
+"""Theorem 1: the LMIs (T1-1), (T1-2) for I modes, the Q design of paper Remark 4, and the least
+γ's for which the LMIs are feasible with given Q's.
 
 For closed-loop modes ``(A_i, B, C_i, D)`` with ranges Ω_i (matrices Ψ_i, real for LF/HF) and
 every ordered pair i ≠ j::
@@ -38,7 +38,11 @@ DEFAULT_GAMMA_TOL = _defaults.DEFAULT_GAMMA_TOL
 
 @dataclass(frozen=True)
 class Theorem1Result:
-    """Certificate of Theorem 1.
+    """A solution of Theorem 1's LMIs (paper eqs. (33), (34)): what the paper calls its certificate.
+
+    The LMIs are feasible for every pair of Hurwitz modes with large enough γ_i, and the
+    theorem's statement (1) does not follow from them (the book's chapter on Theorem 1 gives an
+    exact counterexample), so a solution bounds nothing on its own.
 
     Parameters
     ----------
@@ -94,7 +98,7 @@ def _validate(modes, bands):
                              "differs from mode 0")
         # (T1-1) mixes the law's Ψ terms into the Lyapunov inequality, so it can hold for a mode
         # that is not Hurwitz; the γ's bound energy only if every mode is stable on its own
-        check_hurwitz(f"modes[{k}]", m.A, "Theorem 1 (an L2-gain certificate of the switched loop)")
+        check_hurwitz(f"modes[{k}]", m.A, "Theorem 1's LMIs")
     return modes, bands
 
 
@@ -222,7 +226,8 @@ def _result(modes, bands, Ps, P, Q, g, prob, what, scale=1.0):
 
 def certify_q(modes: list[LTISystem], bands: list[Band], Q: list[np.ndarray], *,
               margin: float = DEFAULT_MARGIN) -> Theorem1Result:
-    """The smallest γ_i that Theorem 1 certifies for *given* Q_i (the sum of the γ_i² minimized).
+    """The smallest γ_i for which Theorem 1's LMIs are feasible with *given* Q_i (the sum of the
+    γ_i² minimized).
 
     Parameters
     ----------

@@ -361,7 +361,7 @@ class GenericStudy:
     peaks : dict
         ``{fixed controller: (3,) ndarray}``, band peaks over LF, the gap ϖ_l ≤ ω ≤ ϖ_h and HF.
     theorem1_gammas : (2,) ndarray
-        γ_i certified by Theorem 1 with the designed Q's.
+        γ_i for which Theorem 1's LMIs are feasible with the designed Q's.
     Q : tuple of (4, 4) ndarray
         The law's Q's.
     stationary : Comparison

@@ -86,7 +86,8 @@ def plot_ratio_cdf(series, reference, ax=None, *, xlim=None):
     ax.axvline(1.0, color="0.3", lw=0.8)
     ax.set_xscale("log")
     ax.set_xlim(*xlim)
-    ticks = [t for t in _TICKS if xlim[0] <= t <= xlim[1]]
+    # fine ticks for a narrow axis (curves near 1), coarse ones for a wide one
+    ticks = [t for t in (_TICKS if xlim[1] / xlim[0] < 2.5 else _COARSE) if xlim[0] <= t <= xlim[1]]
     while len(ticks) > 7:                          # keep 1 and every other tick about it
         k = ticks.index(1.0)
         ticks = [t for i, t in enumerate(ticks) if (i - k) % 2 == 0]
@@ -101,6 +102,7 @@ def plot_ratio_cdf(series, reference, ax=None, *, xlim=None):
 
 
 _TICKS = (0.25, 0.5, 0.75, 0.8, 0.85, 0.9, 0.95, 1.0, 1.05, 1.1, 1.2, 1.3, 1.5, 1.75, 2.0, 3.0, 4.0)
+_COARSE = (0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0)
 
 
 def _ratio_range(series):

@@ -82,7 +82,7 @@ Q_SCALING_FACTORS = (2.0**27, 1e8)
 
 @dataclass(frozen=True)
 class SearchCase:
-    """One case of the search: modes, law ranges, Q's and the Theorem 1 certificate (if any).
+    """One case of the search: modes, law ranges, Q's and the solution of Theorem 1's LMIs (if feasible).
 
     Parameters
     ----------

@@ -165,7 +165,7 @@ class Baselines:
     peaks : dict
         ``{fixed controller: {"LF": peak, "HF": peak}}``: σ_max peak over each band.
     gammas : dict
-        ``{switched controller: (2,) ndarray}``: γ_i certified by Theorem 1 for its Q's.
+        ``{switched controller: (2,) ndarray}``: γ_i for which Theorem 1's LMIs are feasible with its Q's.
     switches : dict
         ``{switched controller: (k,) ndarray}``: switch count in each scenario.
     ideal_piecewise : (r,) ndarray

@@ -60,7 +60,7 @@ __all__ = [
 
 @dataclass(frozen=True)
 class Theorem1Row:
-    """The γ's that Theorem 1 certifies for one pair of Q's.
+    """The least γ's for which Theorem 1's LMIs are feasible with one pair of Q's.
 
     Parameters
     ----------
@@ -92,7 +92,8 @@ class Theorem1Row:
 
 @dataclass(frozen=True)
 class Theorem1Table:
-    """What Theorem 1 certifies with the paper's Q's and with the paper Remark 4 design.
+    """The γ's for which Theorem 1's LMIs are feasible with the paper's Q's and with the paper
+    Remark 4 design.
 
     Parameters
     ----------
@@ -198,7 +199,8 @@ class Theorem1Table:
 
 @cached
 def theorem1_table(gamma_tols: tuple = (1.0, 10.0, 100.0, 1000.0)) -> Theorem1Table:
-    """γ's certified by Theorem 1 with the paper's Q's and with the paper Remark 4 design over γ_tol.
+    """γ's for which Theorem 1's LMIs are feasible with the paper's Q's and the paper Remark 4 design
+    over γ_tol.
 
     Parameters
     ----------
@@ -243,7 +245,8 @@ def _q_entries(table):
 def record_part() -> RecordPart:
     """Record entries of the chapter.
 
-    ``Q_1``, ``Q_2`` (the law's Q's), ``thm1_gammas`` (what Theorem 1 certifies), and the new
+    ``Q_1``, ``Q_2`` (the law's Q's), ``thm1_gammas`` (the least γ's for which Theorem 1's LMIs are feasible),
+    and the new
     ``thm1_mode_reference``, ``thm1_statement1``, ``thm1_lyapunov_jumps``,
     ``thm1_statement2``, ``thm1_statement3``.
 

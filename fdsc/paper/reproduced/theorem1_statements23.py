@@ -206,7 +206,7 @@ def statement2(*, horizon: float = 100.0, window: float = 10.0, dt: float = 1e-3
 
     FDSC runs from rest under the paper's LF and HF disturbances, with the paper's and with our
     Q's; each run's ratios over consecutive windows (:func:`window_ratios`) set against the
-    largest γ_i² Theorem 1 certifies for its Q's.
+    largest γ_i² for which Theorem 1's LMIs are feasible with its Q's.
 
     Parameters
     ----------

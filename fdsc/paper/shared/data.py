@@ -259,7 +259,8 @@ def paper_fdsc(Q=None, *, gamma_tol=DEFAULT_GAMMA_TOL):
     ----------
     Q : sequence of (2, 2) array_like or "paper", optional
         The law's Q's: ``"paper"`` for the printed ones, given matrices, or None to design them
-        by paper Remark 4 with ``gamma_tol``. Given or printed Q's are certified by Theorem 1.
+        by paper Remark 4 with ``gamma_tol``. Given or printed Q's get the least γ's for which
+        Theorem 1's LMIs are feasible.
     gamma_tol : float, optional
         γ_tol of paper Remark 4 (used only when ``Q`` is None).
 
@@ -347,7 +348,7 @@ def run_controller(name, d, t, *, Q=None, law="previous", x0=None):
     t : (N,) array_like
         Uniform grid.
     Q : list of (2, 2) array_like, optional
-        Q's of the FDSC law (default the paper's); certified by Theorem 1 first.
+        Q's of the FDSC law (default the paper's); with Theorem 1's LMIs solved first.
     law : {"previous", "candidate"}
         How ẋ enters the law (see :data:`fdsc.simulate.LAWS`).
     x0 : (2,) array_like, optional
