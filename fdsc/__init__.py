@@ -3,9 +3,10 @@
 A library for any plant and any frequency ranges, after Zhang, Heiland, Benner and Du,
 *Frequency-dependent Switching Control for Disturbance Attenuation of Linear Systems*: bands and
 Ψ, band peaks of σ_max, Lemma 1 (the generalized KYP lemma), band-limited and H∞ state-feedback
-synthesis, the FD-EEF/FD-EPF, Theorem 1 (certify and design the law's Q's), an exact simulator
-for switched loops, and the :class:`FDSC` design object. The paper's reproduction lives in the
-separate layer :mod:`fdsc.paper`, which this package never imports.
+synthesis, the FD-EEF/FD-EPF, Theorem 1's LMIs (the law's Q's designed, or the least γ's for
+given ones), an exact simulator for switched loops, and the :class:`FDSC` design object. The
+paper's reproduction lives in the separate layer :mod:`fdsc.paper`, which this package never
+imports.
 
 Docstrings cite the paper as "paper eq. (N)" with the numbering of the compiled paper: the system
 is paper eq. (6), the LMI of Lemma 1 paper eq. (7), the plant paper eq. (10), the FD-EEF and
