@@ -76,6 +76,11 @@ __all__ = [
 ]
 
 
+def _samples(n):
+    """``n`` samples in words (none, one, n)."""
+    return "no sample" if n == 0 else "one sample" if n == 1 else f"{n} samples"
+
+
 def record_part() -> RecordPart:
     """Record entry ``theorem1_counterexamples`` (new).
 
@@ -135,8 +140,8 @@ def record_part() -> RecordPart:
         f"finer grid). Exact return map of the clean case "
         f"{xo.family}/{xo.seed}: no switch slides, |x| grows by {turn.multiplier:.4g} per turn "
         f"({turn.period:.4g} s) with Theorem 1's LMIs holding. Scaling both Q's of the smallest "
-        f"case by {Q_SCALING_FACTORS} changes the "
-        f"switching signal at {max(q['mismatches'] for q in rec['q_scaling_smallest'])} samples. Every "
+        f"divergent run by " + " or ".join(f"{f:.4g}" for f in Q_SCALING_FACTORS) + " changes its "
+        f"switching signal at {_samples(max(q['mismatches'] for q in rec['q_scaling_smallest']))}. Every "
         "divergent case is rebuilt from its family and seed. The gap-closing certificate (jumps of "
         "V, the law's switch-in "
         f"set) certifies {gs['divergent_certified']} of the {gs['divergent']} divergent runs and "

@@ -284,7 +284,7 @@ def sweep_claims(study: SweepStudy, *, half: bool = False) -> list:
         "FDSC's long-run √(∫zᵀz/∫d²) over PassC-HF's own under the in-band (HF) tones, at α(Ω_3) = 1 "
         "and at the smallest ρ_p > 0 of the grid; PASS if both within 10 % of 1, PARTLY if only at "
         "α = 1",
-        {"alpha_1": at_one, "alpha_near_1": near_one, "alpha_near_1_value": first.alpha_in,
+        {"ratio_at_alpha_1": at_one, "ratio_at_alpha_near_1": near_one, "alpha_near_1": first.alpha_in,
          "max_fdsc_over_band_peak": float(fd.max() / p1.gamma_in)},
         _grade(abs(at_one - 1) <= 0.1 and abs(near_one - 1) <= 0.1, abs(at_one - 1) <= 0.1),
         f"at α = 1 FDSC's ratio is {at_one:.4f} times PassC-HF's, but at α = {first.alpha_in:.4f} "

@@ -259,8 +259,9 @@ class PsiWeights:
             "match" if self.n_sign_violations == 0 else "differs",
             f"weight of Psi counted on {self.omega.size} grid points over {rng}: "
             f"{self.n_sign_violations} sign violations for LF and HF over all w and for MF over "
-            f"w >= 0 (on the mirror interval [-w_2, -w_1] the MF weight is negative, see "
-            f"prop1_factorizations). For real signals only Re Psi counts, and the MF weight of Re "
+            f"w >= 0 (on the mirror interval [-w_2, -w_1] the MF weight is negative: see "
+            f"the factorized weights of Proposition 1). For real signals only Re Psi counts, and the MF "
+            f"weight of Re "
             f"Psi is -(w^2 + w_1 w_2), at most {num(self.mf_real_max, 4)} on the grid: the MF FD-EEF "
             f"of a real signal is never positive."),))
 

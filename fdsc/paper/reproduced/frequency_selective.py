@@ -144,8 +144,8 @@ class PowerVsAlpha:
             "steady-state average FD-EPF of the law's terms (Omega_1, Q_1) and (Omega_3, Q_2), "
             "paper's Q's, on the K_f1 and K_f3 loops, disturbance mixing the paper's LF and HF "
             "tones at dominance alpha (unit mean power): P_a is affine in alpha and changes sign "
-            "at alpha* = P_a(0) / (P_a(0) - P_a(1)) (null: no sign change in [0, 1]). The sign the "
-            "law sees depends on the active loop, not only on the disturbance's dominance."),))
+            "at alpha* = P_a(0) / (P_a(0) - P_a(1)) (none if it does not change sign in [0, 1]). The "
+            "sign the law sees depends on the active loop, not only on the disturbance's dominance."),))
 
 
 @cached

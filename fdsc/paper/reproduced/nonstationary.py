@@ -265,7 +265,7 @@ class SweepStudy:
                    "extended": {r: c.value for r, c in self.extended_crossover.items()},
                    "extended_grid": self.extended.param.tolist()}, "new",
                   "rho_t at which FDSC's energy reaches PassC-LF's or PassC-EF's: on the paper's "
-                  "grid of [0, 0.5] (null: FDSC is better at every point) and, beyond it, bisected "
+                  "grid of [0, 0.5] (none if FDSC is better at every point) and, beyond it, bisected "
                   "to a bracket of width <= 1e-2."),
             entry("sweep_step_halving", "our check (both sweeps with dt and dt/2; nothing printed)",
                   None, {"dt": self.dt, "max_rel_change": self.max_rel_change(),

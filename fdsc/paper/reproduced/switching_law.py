@@ -215,7 +215,8 @@ class SwitchingStatistics:
             "law_chattering", "switching law, paper eq. (31), paper Remark 7 (nothing printed)",
             None, rec, "new",
             f"piecewise disturbance of paper eq. (58) with T = {self.T:g} s, rho_t = {self.rho_t:g}, "
-            f"rho_p* = {self.rho_p_star:g}; share_hf per segment (HF, LF, HF); a large share of "
+            f"rho_p* = {self.rho_p_star:g}; the share of time on the HF mode per segment (HF, LF, "
+            "HF); a large share of "
             "one-sample dwells is chattering at the sampling rate. The conflict (chattering) region "
             "is the set of states where each mode's score prefers the other once it is active; on "
             "its border a continuous-time law would slide, which the sampled law realizes as "

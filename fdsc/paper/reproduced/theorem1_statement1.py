@@ -313,8 +313,9 @@ class Statement1Check:
                    "n_switches": self.jumps.n_switches, "n_runs": self.jumps.n_runs},
                   "new",
                   "V = x' P^s_sigma x at the switches of the autonomous runs with our Q's: V jumps "
-                  "up at a share frac_up of the switches, by up to max_ratio; the printed proof "
-                  "does not cover the jumps."),
+                  f"up at {100 * self.jumps.frac_up:.0f} % of the {self.jumps.n_switches} switches, by "
+                  f"up to a factor {self.jumps.max_ratio:.3g}; the printed proof does not cover the "
+                  "jumps."),
         ))
 
 
