@@ -1,5 +1,6 @@
-"""An FDSC design: a plant, one state-feedback gain per frequency range, the switching law's Q's
-and a solution of Theorem 1's LMIs for them, in one object that simulates itself.
+"""An FDSC design: a plant, one state-feedback gain (or controller with states) per frequency
+range, the switching law's Q's and a solution of Theorem 1's LMIs for them, in one object that
+simulates itself.
 
 The paper's controller (Sec. III, paper eq. (30)) switches between I state-feedback gains
 ``u = K_σ x``; mode i is meant for disturbances that dominate the range Ω_i, and the law (paper
@@ -17,6 +18,8 @@ from numpy.typing import ArrayLike
 
 from ._validation import as_count, as_matrix, check_type
 from .bands import Band
+from .controller import Controller, as_controller, switched_loops
+from .exceptions import DimensionError
 from .plant import LTISystem, Plant, as_plant
 from .rules import PRINTED, SwitchRule
 from .signals import Piecewise, Sinusoids
@@ -48,11 +51,44 @@ def _mode_index(name, index, n_modes):
 
 
 def _gains(gains, plant):
-    """The gains as read-only (m_u, n) matrices, each error naming ``gains[k]``."""
+    """Each mode's controller: a read-only (m_u, n) gain when it has no states, else a
+    :class:`~fdsc.controller.Controller` (stable on its own); each error names ``gains[k]``."""
     if not isinstance(gains, list | tuple):
-        raise TypeError(f"gains must be a list of (m_u, n) matrices, but found {type(gains).__name__}")
-    return tuple(as_matrix(f"gains[{k}]", K, (plant.n_controls, plant.n_states))
-                 for k, K in enumerate(gains))
+        raise TypeError("gains must be a list of (m_u, n) gains or fdsc.Controller objects, but found "
+                        f"{type(gains).__name__}")
+    out = []
+    for k, g in enumerate(gains):
+        c = as_controller(g, plant, f"gains[{k}]")
+        if c.is_static:
+            out.append(c.D)
+            continue
+        growth = 0.0 if not c.n_states else float(np.max(np.linalg.eigvals(c.A).real))
+        if c.n_states and growth >= 0:
+            raise ValueError(f"gains[{k}] must be a controller that is stable on its own (its states run "
+                             "while another mode is active), but A_k has an eigenvalue with real part "
+                             f"{growth:.4g}")
+        out.append(c)
+    return tuple(out)
+
+
+def _modes(plant, gains):
+    """The modes of ``gains`` (normalized by :func:`_gains`): closed loops, or on the shared state."""
+    if all(not isinstance(g, Controller) for g in gains):
+        return [plant.closed_loop(K) for K in gains]
+    return switched_loops(plant, gains)
+
+
+def _shared_x0(x0, n, N):
+    """An initial plant state (controllers at rest) or shared state, as the shared state."""
+    if x0 is None or N == n:
+        return x0
+    x0 = np.asarray(x0, dtype=float)
+    if x0.shape == (n,):
+        return np.r_[x0, np.zeros(N - n)]
+    if x0.shape != (N,):
+        raise DimensionError(f"x0 must be the plant's state ({n},) or the shared state ({N},) of plant "
+                             f"and controllers, but found shape {x0.shape}")
+    return x0
 
 
 @dataclass(frozen=True)
@@ -66,15 +102,17 @@ class FDSC:
     ----------
     plant : Plant
         The open-loop plant (any form :func:`~fdsc.plant.as_plant` accepts).
-    gains : sequence of (m_u, n) array_like
-        K_i, one per mode.
+    gains : sequence of (m_u, n) array_like or Controller
+        Mode i's controller: a gain K_i (the paper's case) or a :class:`~fdsc.controller.Controller`
+        with states, stable on its own; stored as the gain when it has no states.
     bands : sequence of Band
         Ω_i, the range of mode i (real Ψ: LF, HF or entire; Theorem 1 and the law need it).
     in_band : int
         Index of the in-band mode (0-based): the mode for the range the design cares most about;
         paper Remark 4 minimizes its γ.
     certificate : Theorem1Result
-        Theorem 1 for the closed loops of ``gains`` on ``bands``; its Q's are the law's.
+        Theorem 1 for the modes (:attr:`modes`) on ``bands``; its Q's, of the size of the modes'
+        state, are the law's.
     synthesis : tuple of SynthesisResult, optional
         The synthesis results, when the gains were synthesized.
 
@@ -85,24 +123,36 @@ class FDSC:
         ``certificate`` is not a :class:`~fdsc.switching.Theorem1Result`.
     ValueError
         If fewer than two bands are given, the counts of gains, bands and the certificate's Q's
-        differ, or ``in_band`` is not a mode index.
+        differ, ``in_band`` is not a mode index, or a controller with states is unstable on its
+        own.
     DimensionError
-        If a gain is not of shape ``(m_u, n)``.
+        If a gain is not of shape ``(m_u, n)``, a controller does not fit the plant, or a Q is
+        not of the modes' state size.
 
     Attributes
     ----------
-    Q : tuple of (n, n) ndarray
-        The Q_i of the law (from the certificate).
+    Q : tuple of (N, N) ndarray
+        The Q_i of the law (from the certificate), on the modes' state (N = n for gains).
     gammas : (I,) ndarray
         γ_i for which Theorem 1's LMIs are feasible (not a bound on the switched loop).
     modes : tuple of LTISystem
-        The closed loops ``(A + B2 K_i, B1, C + D2 K_i, D1)``.
+        The closed loops ``(A + B2 K_i, B1, C + D2 K_i, D1)`` for gains; with controllers that
+        have states, mode i on the shared state of :func:`~fdsc.controller.switched_loops`.
+    controllers : tuple of Controller
+        Every mode's controller, gains as controllers without states.
 
     Notes
     -----
     The controller ``u = K_σ(t) x`` of paper eq. (30) with the law of paper eq. (31); the
     certificate holds the LMIs of Theorem 1, paper eqs. (33)-(34). The design knows nothing of
     the paper's example: any plant and any real-Ψ bands.
+
+    Controllers with states (an extension; the paper switches gains): every controller runs all
+    the time on x, the active one sets u, so each mode is an LTI system on the shared state
+    ``ξ = [x; x_k,1; …; x_k,I]`` of size N = n + Σ k_i, and Theorem 1's LMIs and the law read
+    ``[ξ̇; ξ]`` with N×N Q's (the controllers' states are the controller's own, so the law can
+    read them). A controller that reads ŵ gets the exact estimate ŵ = d. The states of an
+    inactive controller are driven by x but do not act, so each must be stable on its own.
 
     Examples
     --------
@@ -133,6 +183,11 @@ class FDSC:
         if len(self.certificate.Q) != len(gains):
             raise ValueError(f"certificate must hold one Q per mode ({len(gains)}), but holds "
                              f"{len(self.certificate.Q)}")
+        N = plant.n_states + sum(getattr(g, "n_states", 0) for g in gains)
+        for k, q in enumerate(self.certificate.Q):
+            if np.shape(q) != (N, N):
+                raise DimensionError(f"certificate.Q[{k}] must be ({N}, {N}), the modes' state size, "
+                                     f"but has shape {np.shape(q)}")
         for name, val in (("plant", plant), ("gains", gains), ("bands", bands), ("in_band", in_band)):
             object.__setattr__(self, name, val)
 
@@ -146,14 +201,16 @@ class FDSC:
         ----------
         plant : Plant, control.StateSpace or tuple
             The open-loop plant (see :func:`~fdsc.plant.as_plant`).
-        gains : sequence of (m_u, n) array_like
-            K_i, one per mode (each must stabilize the plant).
+        gains : sequence of (m_u, n) array_like or Controller
+            Mode i's controller, one per mode (each must stabilize the plant): a gain K_i, or a
+            :class:`~fdsc.controller.Controller` with states (stable on its own; the modes then
+            live on the shared state, see the class's Notes).
         bands : sequence of Band
             Ω_i of each mode (real Ψ).
         in_band : int
             Index of the in-band mode (0-based).
-        Q : sequence of (n, n) array_like, optional
-            The law's Q_i. Given: certified by :func:`~fdsc.switching.certify_q`. Omitted:
+        Q : sequence of (N, N) array_like, optional
+            The law's Q_i on the modes' state (N = n for gains). Given: certified by :func:`~fdsc.switching.certify_q`. Omitted:
             designed by paper Remark 4 (:func:`~fdsc.switching.design_q`).
         gamma_tol : float, optional
             γ_tol of paper Remark 4 (used only when Q is omitted).
@@ -167,7 +224,7 @@ class FDSC:
         Raises
         ------
         UnstableError
-            If a gain does not stabilize the plant.
+            If a controller does not stabilize the plant.
         InfeasibleError
             If Theorem 1's LMIs are infeasible for the given Q's, or no Q's exist for this γ_tol.
         SolverError
@@ -186,7 +243,7 @@ class FDSC:
         gains = _gains(gains, plant)
         bands = _bands(bands, len(gains))
         in_band = _mode_index("in_band", in_band, len(gains))
-        modes = [plant.closed_loop(K) for K in gains]
+        modes = _modes(plant, gains)
         if Q is None:
             cert = design_q(modes, bands, in_band, gamma_tol=gamma_tol)
         else:
@@ -252,6 +309,16 @@ class FDSC:
         return len(self.gains)
 
     @property
+    def controllers(self) -> tuple:
+        """Every mode's controller (gains as controllers without states), a tuple of Controller."""
+        return tuple(g if isinstance(g, Controller) else Controller.static(g) for g in self.gains)
+
+    @property
+    def n_states(self) -> int:
+        """Size N of the modes' state: n for gains, n + Σ k_i with controllers that have states."""
+        return self.plant.n_states + sum(getattr(g, "n_states", 0) for g in self.gains)
+
+    @property
     def Q(self) -> tuple:
         """The law's Q_i (from the certificate), a tuple of (n, n) ndarray."""
         return tuple(np.asarray(q) for q in self.certificate.Q)
@@ -263,11 +330,13 @@ class FDSC:
 
     @property
     def modes(self) -> tuple:
-        """Closed loops of the modes (tuple of :class:`~fdsc.plant.LTISystem`)."""
-        return tuple(self.plant.closed_loop(K) for K in self.gains)
+        """The modes (tuple of :class:`~fdsc.plant.LTISystem`): the closed loops of the gains,
+        or, with controllers that have states, on the shared state (class Notes)."""
+        return tuple(_modes(self.plant, self.gains))
 
     def mode(self, i: int) -> LTISystem:
-        """Closed loop of mode ``i`` alone (the fixed-gain controller K_i).
+        """Closed loop of mode ``i``'s controller alone, the fixed controller (state x, or
+        ``[x; x_k,i]`` for a controller with states).
 
         Parameters
         ----------
@@ -284,7 +353,7 @@ class FDSC:
             If ``i`` is not a mode index in [0, ``n_modes``) (the message names ``i``).
         """
         i = _mode_index("i", i, self.n_modes)
-        return self.plant.closed_loop(self.gains[i])
+        return self.controllers[i].closed_loop(self.plant)
 
     def simulate(self, d: Sinusoids | Piecewise, t: ArrayLike, *, x0: ArrayLike | None = None,
                  law: str = "previous", sigma0: int = 0, rule: SwitchRule = PRINTED,
@@ -297,8 +366,8 @@ class FDSC:
             The scalar disturbance.
         t : (N,) array_like
             Uniform time grid (see :func:`~fdsc.simulate.time_grid`).
-        x0 : (n,) array_like, optional
-            Initial state (default 0).
+        x0 : (n,) or (N,) array_like, optional
+            Initial plant state, the controllers at rest, or the modes' state (default 0).
         law : {"previous", "candidate"}, optional
             How ẋ enters the law (see :data:`fdsc.simulate.LAWS`).
         sigma0 : int, optional
@@ -314,9 +383,12 @@ class FDSC:
         Returns
         -------
         SimResult
+            Its states are the modes' state (x, then the controllers' states when they have any).
 
         Raises
         ------
+        DimensionError
+            If ``x0`` is neither of the plant's nor of the modes' state size.
         ValueError, TypeError, SingularFrequencyError, MemoryLimitError, UnstableError
             As :func:`~fdsc.simulate.simulate` raises them.
 
@@ -326,7 +398,7 @@ class FDSC:
             As :func:`~fdsc.simulate.simulate` warns: in particular if the divergence monitor
             (:mod:`fdsc._divergence`) finds the switched run diverging.
         """
-        return simulate(list(self.modes), d, t, x0=x0, law_bands=list(self.bands),
+        return simulate(list(self.modes), d, t, x0=_shared_x0(x0, self.plant.n_states, self.n_states), law_bands=list(self.bands),
                         law_Q=list(self.Q), law=law, sigma0=sigma0, rule=rule, kernel=kernel,
                         **options)
 
@@ -378,7 +450,8 @@ class FDSC:
                 raise ValueError(f"K0 must be 'lqr', None or a gain, but found {K0!r}")
             K0 = lqr_gain(self.plant)
         bands = list(self.bands) if law == "band_power" else None
-        return Supervisor(self.plant, list(self.gains), law=law, bands=bands, decide_every=decide_every,
+        return Supervisor(self.plant, list(self.controllers) if self.n_states > self.plant.n_states
+                          else list(self.gains), law=law, bands=bands, decide_every=decide_every,
                           restart=restart, K0=K0)
 
     def case(self, d, horizon: float, dt: float, *, x0: ArrayLike | None = None,
@@ -393,8 +466,8 @@ class FDSC:
             The scalar disturbance.
         horizon, dt : float
             End time and step in s (the horizon a multiple of dt).
-        x0 : (n,) array_like, optional
-            Initial state (default 0).
+        x0 : (n,) or (N,) array_like, optional
+            Initial plant state, the controllers at rest, or the modes' state (default 0).
         law : {"previous", "candidate"}, optional
             How ẋ enters the law (see :data:`fdsc.simulate.LAWS`).
         sigma0 : int, optional
@@ -418,5 +491,5 @@ class FDSC:
         >>> np.round(runs.time_share[:, 1], 2)          # share of the HF mode: slow tone, fast tone
         array([0.04, 0.89])
         """
-        return Case(list(self.modes), d, horizon, dt, x0=x0, law_bands=list(self.bands),
+        return Case(list(self.modes), d, horizon, dt, x0=_shared_x0(x0, self.plant.n_states, self.n_states), law_bands=list(self.bands),
                     law_Q=list(self.Q), law=law, sigma0=sigma0, rule=rule, label=label)
