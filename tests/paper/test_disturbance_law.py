@@ -196,3 +196,20 @@ def test_a_draw_on_sampled_measurements_reports_every_variant(monkeypatch, fs):
     assert not any(v["diverged"] for v in ("exact", "sampled") for v in [r[v]])
     assert r["sampled"]["ratio"] == pytest.approx(r["exact"]["ratio"], rel=0.05)
     assert r["A+10%"]["ratio"] != r["sampled"]["ratio"]
+
+
+def test_the_build_time_recheck_of_the_stored_study_catches_a_changed_number():
+    import copy
+
+    full = dl.load_full()
+    if full is None:
+        pytest.skip("the full study is not in this checkout")
+    ok = dl.recheck_stored(full, "generic", 2)
+    assert ok["draws"] == 2 and ok["controllers"] == len(full["generic"]["fixed_ratio"])
+    assert ok["largest_difference"] < 1e-6
+    bad = copy.deepcopy(full)
+    name = next(iter(bad["generic"]["fixed_ratio"]))
+    bad["generic"]["fixed_ratio"][name][1] *= 1.01
+    assert dl.recheck_stored(bad, "generic", 2)["largest_difference"] == pytest.approx(1 - 1 / 1.01, rel=1e-3)
+    with pytest.raises(ValueError, match="k must be at most"):
+        dl.recheck_stored(full, "generic", len(full["generic"]["test_indices"]) + 1)

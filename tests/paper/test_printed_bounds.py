@@ -2,6 +2,8 @@
 
 import json
 
+import numpy as np
+
 import pytest
 from jsonschema import Draft202012Validator
 from numpy.testing import assert_allclose
@@ -123,3 +125,22 @@ def test_prose_and_rows(pb):
     for table in (rows, pb.reading_rows(), pb.search_rows(), pb.crossing_rows()):
         assert table and all(isinstance(v, str) for r in table for v in r.values())
     assert len(pb.reading_rows("time")) + len(pb.reading_rows("frequency")) == len(pb.reading_rows())
+
+
+def test_k_f2s_failure_is_not_the_rounding_of_the_printed_gain(pb, entries):
+    """Every gain that prints as K_f2 (each entry within half a unit of the fourth decimal) has
+    an MF band peak above the printed 0.4025, checked here at random points of that box too."""
+    plant, gains, bands = aircraft(), paper_gains(), paper_bands()
+    b = pb["K_f2"]
+    lo, hi = b.rounding
+    assert lo <= b.peak <= hi and not b.holds_within_rounding and lo > b.paper
+    rng = np.random.default_rng(7)
+    K = np.asarray(gains["K_f2"])
+    for _ in range(8):
+        dK = rng.uniform(-0.5e-4, 0.5e-4, K.shape)
+        peak = band_peak(plant.closed_loop(K + dK), bands["MF"]).gamma
+        assert lo - 1e-9 <= peak <= hi + 1e-9 and peak > b.paper
+    ineq = entries[BOUND_IDS["K_f2"]]["inequality"]
+    assert ineq["quantity_within_rounding"] == [lo, hi] and ineq["holds_within_rounding"] is False
+    # a bound that holds for the printed gain holds over its rounding as well (K_e: far below)
+    assert pb["K_e"].holds_within_rounding and pb["K_e"].rounding[1] < pb["K_e"].paper

@@ -43,6 +43,7 @@ from fdsc.paper.pays.disturbance_law_full import (
     full_study,
     load_full,
     measured_robustness,
+    recheck_stored,
     robustness,
     stored_fixed_set,
 )
@@ -66,7 +67,8 @@ from fdsc.paper.shared.results import RecordPart, entry
 __all__ = ["SEED", "N_RECORD", "N_FULL", "LAMBDAS", "HYSTERESES", "DECIDE_EVERY", "RESTART", "FULL_FILE",
            "IDEAL_PAIR", "HEADROOM_MIN", "MAX_SWITCHES_PER_CHANGE", "TARGETS", "Study", "study",
            "rho_t_family", "record_part", "full_study", "load_full", "law_key", "N_ROBUST", "ROBUST_SNR_DB",
-           "robustness", "measured_robustness", "certificate", "stored_fixed_set", "answer", "describe",
+           "robustness", "measured_robustness", "certificate", "recheck_stored",
+    "stored_fixed_set", "answer", "describe",
            "LAW_WORDS", "choose", "share_words"]
 
 #: Draws per example in the record (half train, half test).

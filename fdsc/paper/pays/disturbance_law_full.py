@@ -161,6 +161,56 @@ def stored_fixed_set(full: dict, example: str) -> FixedSet:
                     {}, {}, None)
 
 
+def _stored_law(full, example):
+    """The stored study's fixed controllers, chosen law and first test draw of one example."""
+    return stored_fixed_set(full, example), law_key(full[example]["law"]), full["n"] // 2
+
+
+def recheck_stored(full: dict, example: str, k: int = 2) -> dict:
+    """Every fixed controller's energy over the chosen one's on the stored study's first ``k``
+    test draws, recomputed now from the stored controllers and draw seeds.
+
+    Parameters
+    ----------
+    full : dict
+        The full study (:func:`load_full`).
+    example : {"aircraft", "generic"}
+    k : int, optional
+        Test draws recomputed.
+
+    Returns
+    -------
+    dict
+        ``draws`` (k), ``controllers`` (how many ratios per draw), ``largest_difference`` (the
+        largest relative difference between a recomputed and a stored ratio) and ``chosen``.
+
+    Raises
+    ------
+    ValueError
+        If ``k`` is not a count between 1 and the stored test draws.
+    """
+    import fdsc
+    from fdsc.paper.pays.disturbance_law_draws import DECIDE_EVERY, RESTART, seeded_draw
+
+    r = full[example]
+    k = as_count("k", k, 1)
+    if k > len(r["test_indices"]):
+        raise ValueError(f"k must be at most the {len(r['test_indices'])} stored test draws, but found {k}")
+    fs = stored_fixed_set(full, example)
+    worst = 0.0
+    for j, index in enumerate(r["test_indices"][:k]):
+        ex, dr = seeded_draw(example, index, full["seed"])
+        K = fdsc.lqr_gain(ex.plant)          # any candidates: a fixed loop's energy is its own
+        prep = fdsc.Supervisor(ex.plant, [K, K], decide_every=DECIDE_EVERY,
+                               restart=RESTART).prepare(dr.d, dr.horizon)
+        ref = prep.energy_of(fs.controllers[fs.chosen])
+        for name, ratios in r["fixed_ratio"].items():
+            now = prep.energy_of(fs.controllers[name]) / ref
+            worst = max(worst, abs(now / ratios[j] - 1.0))
+    return {"draws": k, "controllers": len(r["fixed_ratio"]), "largest_difference": worst,
+            "chosen": fs.chosen}
+
+
 def robustness(full: dict, *, n: int = N_ROBUST, snrs=ROBUST_SNR_DB, executor=None) -> dict:
     """The law chosen in the full study on its first ``n`` test draws per example, on a noisy
     estimate as a controller would build it (:func:`robust_result`).
@@ -185,10 +235,7 @@ def robustness(full: dict, *, n: int = N_ROBUST, snrs=ROBUST_SNR_DB, executor=No
     n = as_count("n", n, 1)
     out = {}
     for example in ("aircraft", "generic"):
-        r = full[example]
-        fs = stored_fixed_set(full, example)
-        key = law_key(r["law"])
-        first = full["n"] // 2
+        fs, key, first = _stored_law(full, example)
         args = [(example, first + i, key, fs, float(snr), full["seed"]) for snr in snrs for i in range(n)]
         res = map_draws(robust_result, args, executor)
         per = {}
@@ -231,10 +278,7 @@ def measured_robustness(full: dict, *, n: int = N_ROBUST, executor=None) -> dict
     n = as_count("n", n, 1)
     out = {}
     for example in ("aircraft", "generic"):
-        r = full[example]
-        fs = stored_fixed_set(full, example)
-        key = law_key(r["law"])
-        first = full["n"] // 2
+        fs, key, first = _stored_law(full, example)
         args = [(example, first + i, key, fs, full["seed"]) for i in range(n)]
         res = map_draws(measured_result, args, executor)
         per = {}

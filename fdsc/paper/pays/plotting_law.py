@@ -118,7 +118,7 @@ def _ratio_range(series):
     return max(0.25, lo * math.exp(-pad)), min(4.0, hi * math.exp(pad))
 
 
-def plot_fixed_plane(points, chosen, ax=None, *, top=None):
+def plot_fixed_plane(points, chosen, ax=None, *, top=None, zoom=None, zoom_at=(0.3, 0.42, 0.42, 0.5)):
     """Every fixed controller in the plane of its LF and HF band peaks, by family; the static and
     dynamic fronts joined by lines, the one chosen in advance ringed.
 
@@ -130,6 +130,11 @@ def plot_fixed_plane(points, chosen, ax=None, *, top=None):
     ax : Axes, optional
     top : float, optional
         Peaks above it are off the axes (the caller names them in the caption).
+    zoom : (float, float, float, float), optional
+        ``(LF low, LF high, HF low, HF high)``: an inset magnifies this box (linear axes), its
+        place marked on the main axes.
+    zoom_at : (float, float, float, float), optional
+        Where the inset sits, in axes fractions ``(x, y, width, height)``.
 
     Returns
     -------
@@ -163,6 +168,20 @@ def plot_fixed_plane(points, chosen, ax=None, *, top=None):
     ax.set_ylabel(r"HF band peak $\gamma_{HF}$ [-]")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8, loc="best")
+    if zoom is not None:
+        inset = ax.inset_axes(list(zoom_at))
+        box = {n: p for n, p in points.items()
+               if zoom[0] <= p[1] <= zoom[1] and zoom[2] <= p[2] <= zoom[3]}
+        plot_fixed_plane(box, chosen, inset)
+        inset.set_xscale("linear")
+        inset.set_yscale("linear")
+        inset.set_xlim(zoom[0], zoom[1])
+        inset.set_ylim(zoom[2], zoom[3])
+        inset.set_xlabel("")
+        inset.set_ylabel("")
+        inset.tick_params(labelsize=7)
+        inset.get_legend().remove()
+        ax.indicate_inset_zoom(inset, edgecolor="0.4")
     return ax, off
 
 

@@ -36,6 +36,7 @@ from fdsc.paper.repairs.theorem1_exact import (
     ExactTurn,
     exact_applies,
     exact_turn,
+    q_scaling_turns,
 )
 from fdsc.paper.repairs.theorem1_gap import GapClosing, ResidueRun, gap_closing, residues
 from fdsc.paper.repairs.theorem1_search import (
@@ -48,6 +49,7 @@ from fdsc.paper.repairs.theorem1_witness import LMIWitness, QScaling, lmi_witnes
 from fdsc.paper.shared.results import RecordPart, entry
 
 __all__ = [
+    "q_scaling_turns",
     "FAMILIES",
     "CAUSES",
     "SearchCase",
@@ -114,13 +116,15 @@ def record_part() -> RecordPart:
                                   "decided_by": kinds[d.family, d.seed][1]}
                                  if d.law == "previous" else {})} for d in search.diagnoses]}
     xo, turn = search.exact_counterexample()
+    xc = search.case(xo.family, xo.seed)
     rec["exact"] = {"family": xo.family, "seed": xo.seed, "law": xo.law,
                     "multiplier": turn.multiplier, "period": turn.period,
                     "growth_rate": turn.growth_rate, "angles": turn.angles.tolist(),
                     "leaving": turn.leaving.tolist(), "dwells": turn.dwells.tolist(),
                     "gains": turn.gains.tolist(), "normal_speeds": turn.normal_speeds.tolist(),
                     "entry_margins": turn.entry_margins.tolist(), "clean": turn.clean,
-                    "lmi_holds": turn.lmi_holds, "gammas": turn.gammas.tolist()}
+                    "lmi_holds": turn.lmi_holds, "gammas": turn.gammas.tolist(),
+                    "q0_scaling": q_scaling_turns(xc.modes, xc.bands, xc.Q, law=xo.law)}
     rec["lmi_witness_smallest"] = {k: getattr(wit, k).tolist() for k in
                                    ("t_s", "t", "gammas", "max_eig_1", "max_eig_2")}
     rec["q_scaling_smallest"] = [dict(vars(q)) for q in

@@ -40,7 +40,8 @@ from fdsc.lyapunov_jumps import switching_forms
 from fdsc.paper.repairs.theorem1_witness import lmi_witness
 from fdsc.paper.shared.prose import num, times
 
-__all__ = ["ExactTurn", "exact_turn", "exact_applies", "RAY_TOL", "CONE_LABELS"]
+__all__ = ["ExactTurn", "exact_turn", "exact_applies", "q_scaling_turns", "RAY_TOL", "CONE_LABELS",
+           "Q_SCALES"]
 
 #: A switch counts as landing on the entering mode's own boundary (decided by its flow) if
 #: ``|rᵀ S_ji r| / ‖S_ji‖₂`` is at most this.
@@ -50,6 +51,9 @@ RAY_TOL = 1e-9
 CONE_LABELS = ("mode 0", "mode 1", "either", "chattering")
 
 _TWO_PI = 2.0 * np.pi
+
+#: Factors applied to Q_0 by :func:`q_scaling_turns`.
+Q_SCALES = (1e-4, 1e-2, 1.0, 1e2, 1e4, 1e6, 2e6, 3e6, 1e7)
 
 
 def _zeros(S):
@@ -455,3 +459,39 @@ def exact_turn(modes, bands, Q, *, law: str = "previous", start_mode: int = 0,
     return ExactTurn(law, A, S, sense, start, int(start_mode), np.array(angles),
                      np.array(leaving), np.array(dwells), np.array(gains), np.array(speeds),
                      np.array(margins), np.array(slides), bool(holds), gammas)
+
+
+def q_scaling_turns(modes, bands, Q, *, law: str = "previous", scales=Q_SCALES) -> list:
+    """The exact return map with Q_0 scaled: whether a counterexample depends on the relative size
+    of its Q's. Theorem 1's LMIs hold for any Q's (so only the law changes), and the law is
+    unchanged when both Q's are scaled by one factor, so scaling Q_1 by c is scaling Q_0 by 1/c.
+
+    Parameters
+    ----------
+    modes, bands, Q, law
+        As :func:`exact_turn`.
+    scales : sequence of float, optional
+        Factors applied to Q_0.
+
+    Returns
+    -------
+    list of dict
+        One per factor: ``factor``, ``norm_ratio`` (‖Q_0‖₂ / ‖Q_1‖₂ after scaling),
+        ``multiplier`` (None where there is no clean return map), ``diverges`` (Theorem 1's LMIs
+        hold, no switch slides and the multiplier exceeds 1) and ``why`` (the reason where
+        there is no clean return map: a switch slides, or a mode is never left).
+    """
+    out = []
+    for c in scales:
+        Qs = [np.array(Q[0], dtype=float) * float(c), np.array(Q[1], dtype=float)]
+        row = {"factor": float(c),
+               "norm_ratio": float(np.linalg.norm(Qs[0], 2) / np.linalg.norm(Qs[1], 2))}
+        try:
+            t = exact_turn(modes, bands, Qs, law=law)
+        except ValueError as err:
+            out.append(row | {"multiplier": None, "diverges": False, "why": str(err).split(":")[0]})
+            continue
+        out.append(row | {"multiplier": float(t.multiplier) if t.clean else None,
+                          "diverges": bool(t.proves_divergence),
+                          "why": "" if t.clean else "a switch slides"})
+    return out

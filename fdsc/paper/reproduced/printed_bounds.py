@@ -14,6 +14,7 @@ The record entries ``bound_f1`` … ``bound_e`` (:func:`printed_bound_entries`) 
 the chapter :mod:`fdsc.paper.reproduced.passive_controllers`, which designs the gains they compare with.
 """
 
+import itertools
 from dataclasses import dataclass
 
 import numpy as np
@@ -91,6 +92,11 @@ class PrintedBound:
     first_crossings : dict
         ``{"<quantity>, <signal>": t}``: first time each running ratio reaches the printed
         value (s), for information only.
+    rounding : tuple of float
+        ``(least, largest)`` band peak over the gains the printed digits allow: the corners of
+        the box of half a unit of the last printed decimal around every entry of the printed
+        gain (the peak is smooth in the gain there, so to first order its extremes over the box
+        are at corners). Whether the inequality's verdict survives the rounding of the gain.
     decimals : int
         Decimals printed.
     """
@@ -105,6 +111,7 @@ class PrintedBound:
     crossings: tuple
     search: BoundMatch
     first_crossings: dict
+    rounding: tuple
     decimals: int = PRINTED_DECIMALS
 
     @property
@@ -116,6 +123,11 @@ class PrintedBound:
     def holds(self) -> bool:
         """The printed inequality holds for the printed gain (peak below the printed value)."""
         return self.peak < self.paper
+
+    @property
+    def holds_within_rounding(self) -> bool:
+        """Whether some gain the printed digits allow satisfies the printed inequality."""
+        return self.rounding[0] < self.paper
 
     @property
     def factor(self) -> float:
@@ -165,20 +177,26 @@ class PrintedBound:
         >>> pb = printed_bounds()
         >>> [pb[g].stated() for g in ("K_f2", "K_e")]  # doctest: +NORMALIZE_WHITESPACE
         ['the band peak is within 0.07 % of the printed value but above it, so the printed
-         inequality fails for the printed gain',
+         inequality fails for the printed gain, and for every gain its printed digits allow
+         (their band peaks are at least 0.40279)',
          'the inequality holds, but the printed value is the band peak ×1.77, so it is not the
          peak the design attains']
         """
+        lo = self.rounding[0]
+        allowed = (f", and for every gain its printed digits allow (their band peaks are at least "
+                   f"{num(lo, 5)})" if not self.holds_within_rounding else
+                   f", though a gain its printed digits allow has band peak {num(lo, 5)}"
+                   if not self.holds else "")
         if self.verdict in ("match", "close"):
             return (f"the band peak is within {pct(abs(self.peak - self.paper) / self.paper, 2)}"
                     " of the printed value" + (" and below it" if self.holds else
                                                 " but above it, so the printed inequality fails "
-                                                "for the printed gain"))
+                                                "for the printed gain" + allowed))
         if self.holds:
             return (f"the inequality holds, but the printed value is the band peak "
                     f"{times(1 / self.factor)}, so it is not the peak the design attains")
         return (f"the band peak is the printed value {times(self.factor)}, so the printed "
-                "inequality fails for the printed gain")
+                "inequality fails for the printed gain" + allowed)
 
     def note(self, settings: dict) -> str:
         """The note of the bound's record entry, in reader language.
@@ -234,7 +252,9 @@ class PrintedBound:
         -------
         dict
             ``statement`` (in words), ``quantity`` (the band peak), ``bound`` (the printed
-            value), ``holds`` (quantity < bound).
+            value), ``holds`` (quantity < bound), ``quantity_within_rounding`` (least and
+            largest band peak over the gains the printed digits allow) and
+            ``holds_within_rounding`` (the least below the bound).
 
         Examples
         --------
@@ -244,7 +264,9 @@ class PrintedBound:
         """
         return {"statement": f"σ_max(G(jω), {self.gain}) < {self.paper} for every ω in "
                              f"{_BAND_WORDS[self.band]}",
-                "quantity": float(self.peak), "bound": float(self.paper), "holds": bool(self.holds)}
+                "quantity": float(self.peak), "bound": float(self.paper), "holds": bool(self.holds),
+                "quantity_within_rounding": [float(v) for v in self.rounding],
+                "holds_within_rounding": bool(self.holds_within_rounding)}
 
     def to_entry(self, settings: dict) -> dict:
         """The record entry of this bound (``bound_f1``, ``bound_f2``, ``bound_f3``, ``bound_e``).
@@ -368,7 +390,8 @@ class PrintedBounds:
         dict
             ``{name: text}``: per gain ``<gain>_printed``, ``_peak``, ``_lemma1``, ``_factor``
             (peak / printed), ``_inverse`` (printed / peak), ``_verdict``, ``_stated``,
-            ``_within``, ``_chance``, ``_hits``, ``_omega_peak``; ``n_close``, ``n_differs``,
+            ``_within``, ``_chance``, ``_hits``, ``_omega_peak``, ``_rounding_least`` (the least
+            band peak over the gains the printed digits allow); ``n_close``, ``n_differs``,
             ``n_hold``, ``n_fail`` (printed inequalities true and false for the printed gains),
             ``hold_gains``, ``fail_gains``,
             ``verdicts`` (all four in one phrase), ``searched``, ``n_signals``, ``n_horizons``,
@@ -400,6 +423,7 @@ class PrintedBounds:
                     f"{g}_stated": b.stated(), f"{g}_within": count(s.n_within_close),
                     f"{g}_chance": num(s.chance_hits, 2), f"{g}_hits": count(len(s.hits)),
                     f"{g}_omega_peak": num(b.omega_peak),
+                    f"{g}_rounding_least": num(b.rounding[0], 5),
                     f"{g}_nearest_td": s.best.describe()}
         return out
 
@@ -411,6 +435,15 @@ class PrintedBounds:
         RecordPart
         """
         return RecordPart(tuple(b.to_entry(self.settings) for b in self.bounds))
+
+
+def _rounding_range(plant, K, band, decimals=PRINTED_DECIMALS):
+    """Least and largest band peak over the corners of the box of gains that print as ``K``."""
+    half = 0.5 * 10.0 ** -decimals
+    K = np.asarray(K, dtype=float)
+    peaks = [band_peak(plant.closed_loop(K + half * np.reshape(signs, K.shape)), band).gamma
+             for signs in itertools.product((-1.0, 1.0), repeat=K.size)]
+    return float(min(peaks)), float(max(peaks))
 
 
 @cached
@@ -454,7 +487,8 @@ def printed_bounds() -> PrintedBounds:
         crossings = tuple(w[np.nonzero(np.diff(np.sign(above)))[0]].tolist())
         out.append(PrintedBound(gain, kind, paper, pair.peak, pair.omega_peak, pair.lmi_gamma,
                                 {k: float(v) for k, v in cands.items()}, crossings, search[gain],
-                                search.readings(gain)["first_crossings_s"]))
+                                search.readings(gain)["first_crossings_s"],
+                                _rounding_range(plant, printed[gain], band)))
     return PrintedBounds(tuple(out), search.settings())
 
 
