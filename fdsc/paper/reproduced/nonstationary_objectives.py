@@ -282,7 +282,7 @@ def p1_global(mixed: SweepRuns) -> P1Result:
                   steady_state_gain(hf_loop, lf.frequencies, lf.amplitudes) ** 2)]
     for i, rho in enumerate(mixed.param):
         d = mixed_disturbance(rho)
-        name = "HF, paper eq. (57)" if rho == 0 else f"mixed, rho_p = {rho:.3g}"
+        name = "HF, paper eq. (57)" if rho == 0 else f"mixed, ρ_p = {rho:.3g}"
         rows.append(P1Row(name, float(rho), d.dominance(hf_band),
                           {n: float(mixed.tail_ratio[n][i]) for n in SWEEP_NAMES},
                           steady_state_gain(hf_loop, d.frequencies, d.amplitudes) ** 2))
