@@ -373,7 +373,7 @@ def as_controller(obj, plant=None, name: str = "controller") -> Controller:
         raise TypeError(f"{name} must be a gain, an fdsc.Controller or a StateSpace from x to u, but "
                         f"found an {type(obj).__name__}")
     else:
-        abcd = _statespace_matrices(obj, name)
+        abcd = _statespace_matrices(obj, name, static_ok=True)
         if abcd is not None:
             A, B, C, D = (np.asarray(a, dtype=float) for a in abcd)
             c = Controller(A, B, C, D)

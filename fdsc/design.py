@@ -16,7 +16,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validation import as_count, as_matrix, check_type
+from ._validation import as_count, as_matrix, as_vector, check_hurwitz, check_type
 from .bands import Band
 from .controller import Controller, as_controller, switched_loops
 from .exceptions import DimensionError
@@ -32,7 +32,10 @@ __all__ = ["FDSC"]
 
 
 def _bands(bands, count=None):
-    if not isinstance(bands, list | tuple) or len(bands) < 2:
+    if not isinstance(bands, list | tuple):
+        raise TypeError(f"bands must be a list or tuple of fdsc.Band, one per mode, but found "
+                        f"{type(bands).__name__}")
+    if len(bands) < 2:
         raise ValueError("bands must list at least two frequency ranges (one per mode), but found "
                          f"{bands!r}")
     for k, b in enumerate(bands):
@@ -68,7 +71,29 @@ def _gains(gains, plant):
                              "while another mode is active), but A_k has an eigenvalue with real part "
                              f"{growth:.4g}")
         out.append(c)
+    # Theorem 1 (as implemented) needs one input matrix for every mode: a direct path from ŵ to u
+    # (F) enters the mode's B and D, so it must be the same in every mode
+    Fs = [np.zeros((plant.n_controls, plant.B1.shape[1])) if not isinstance(g, Controller) or g.F is None
+          else g.F for g in out]
+    for k, F in enumerate(Fs):
+        if not np.array_equal(F, Fs[0]):
+            raise ValueError(f"gains[{k}] reads ŵ directly with F = {F.tolist()} while gains[0] has "
+                             f"F = {Fs[0].tolist()}: Theorem 1's modes must share their input matrices "
+                             "(B1 + B2 F, D1 + D2 F), so give every mode the same F, or let ŵ act "
+                             "through the controller's states (E) only")
     return tuple(out)
+
+
+def _check_certificate(cert, modes, bands):
+    """Refuse a certificate whose LMIs do not hold for these modes and bands (e.g. another design's)."""
+    from .exceptions import VerificationError
+    from .switching import _verify
+
+    try:
+        _verify(modes, bands, cert.Ps, cert.P, cert.Q, cert.gammas, cert.status, "certificate")
+    except (VerificationError, ValueError) as err:
+        raise ValueError("certificate must solve Theorem 1's LMIs for these modes and bands (is it "
+                         f"another design's?): {err}") from None
 
 
 def _modes(plant, gains):
@@ -82,7 +107,7 @@ def _shared_x0(x0, n, N):
     """An initial plant state (controllers at rest) or shared state, as the shared state."""
     if x0 is None or N == n:
         return x0
-    x0 = np.asarray(x0, dtype=float)
+    x0 = as_vector("x0", x0)
     if x0.shape == (n,):
         return np.r_[x0, np.zeros(N - n)]
     if x0.shape != (N,):
@@ -123,8 +148,9 @@ class FDSC:
         ``certificate`` is not a :class:`~fdsc.switching.Theorem1Result`.
     ValueError
         If fewer than two bands are given, the counts of gains, bands and the certificate's Q's
-        differ, ``in_band`` is not a mode index, or a controller with states is unstable on its
-        own.
+        differ, ``in_band`` is not a mode index, a controller with states is unstable on its
+        own, the modes' direct gains from ŵ differ, or ``certificate`` does not solve Theorem 1's
+        LMIs for these modes and bands.
     DimensionError
         If a gain is not of shape ``(m_u, n)``, a controller does not fit the plant, or a Q is
         not of the modes' state size.
@@ -151,7 +177,8 @@ class FDSC:
     the time on x, the active one sets u, so each mode is an LTI system on the shared state
     ``ξ = [x; x_k,1; …; x_k,I]`` of size N = n + Σ k_i, and Theorem 1's LMIs and the law read
     ``[ξ̇; ξ]`` with N×N Q's (the controllers' states are the controller's own, so the law can
-    read them). A controller that reads ŵ gets the exact estimate ŵ = d. The states of an
+    read them). A controller that reads ŵ gets the exact estimate ŵ = d; its direct gain F from
+    ŵ to u must be the same in every mode (Theorem 1's modes share their input matrices). The states of an
     inactive controller are driven by x but do not act, so each must be stable on its own.
 
     Examples
@@ -188,6 +215,14 @@ class FDSC:
             if np.shape(q) != (N, N):
                 raise DimensionError(f"certificate.Q[{k}] must be ({N}, {N}), the modes' state size, "
                                      f"but has shape {np.shape(q)}")
+        _check_certificate(self.certificate, _modes(plant, gains), bands)
+        if self.synthesis is not None:
+            from .synthesis import SynthesisResult
+
+            if not isinstance(self.synthesis, tuple) or len(self.synthesis) != len(gains) or not all(
+                    isinstance(r, SynthesisResult) for r in self.synthesis):
+                raise TypeError("synthesis must be None or a tuple of one fdsc.SynthesisResult per mode, "
+                                f"but found {self.synthesis!r:.80}")
         for name, val in (("plant", plant), ("gains", gains), ("bands", bands), ("in_band", in_band)):
             object.__setattr__(self, name, val)
 
@@ -243,7 +278,15 @@ class FDSC:
         gains = _gains(gains, plant)
         bands = _bands(bands, len(gains))
         in_band = _mode_index("in_band", in_band, len(gains))
+        for k, g in enumerate(gains):
+            alone = g.closed_loop(plant) if isinstance(g, Controller) else plant.closed_loop(g)
+            check_hurwitz(f"the closed loop of gains[{k}]", alone.A, "an FDSC mode")
         modes = _modes(plant, gains)
+        N = modes[0].n_states
+        if Q is not None:
+            if not isinstance(Q, list | tuple) or len(Q) != len(gains):
+                raise ValueError(f"Q must list one (N, N) matrix per mode ({len(gains)}), but found {Q!r:.60}")
+            Q = [as_matrix(f"Q[{k}]", q, (N, N)) for k, q in enumerate(Q)]
         if Q is None:
             cert = design_q(modes, bands, in_band, gamma_tol=gamma_tol)
         else:

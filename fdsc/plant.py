@@ -228,8 +228,10 @@ class Plant:
         return LTISystem(self.A + self.B2 @ K, self.B1, self.C + self.D2 @ K, self.D1)
 
 
-def _statespace_matrices(sys, name):
-    """(A, B, C, D) of a continuous-time python-control StateSpace, or None if ``sys`` is not one."""
+def _statespace_matrices(sys, name, *, static_ok=False):
+    """(A, B, C, D) of a continuous-time python-control StateSpace, or None if ``sys`` is not one.
+    With ``static_ok`` a system without states may have ``dt = None`` (python-control's default
+    for a static gain: it is a gain in continuous time as well)."""
     try:
         import control
     except ImportError:  # python-control is optional for the library
@@ -239,7 +241,7 @@ def _statespace_matrices(sys, name):
             raise TypeError(f"{name} must be a python-control StateSpace (convert with control.ss), "
                             f"but found {type(sys).__name__}")
         return None
-    if not sys.isctime(strict=True):
+    if not sys.isctime(strict=True) and not (static_ok and sys.nstates == 0 and sys.dt is None):
         raise ValueError(f"{name} must be a continuous-time system (dt = 0), but found dt={sys.dt}")
     return sys.A, sys.B, sys.C, sys.D
 

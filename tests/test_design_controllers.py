@@ -18,6 +18,7 @@ from fdsc import (
     switched_loops,
     time_grid,
 )
+from fdsc.exceptions import UnstableError
 
 A = [[0.0, 1.0], [-4.0, -0.4]]
 OSC = Plant(A, [[0.0], [1.0]], [[0.0], [1.0]], [[1.0, 0.0], [0.0, 0.0]], [[0.0], [0.0]], [[0.0], [0.1]])
@@ -110,6 +111,31 @@ def test_a_decoupled_controller_state_changes_nothing_but_the_size(static):
 def test_bad_controller_modes(static, make, exc, match):
     with pytest.raises(exc, match=match):
         make(static)
+
+
+def test_more_bad_input_is_named(static, filtered):
+    import control
+
+    K_lf, K_hf = static.gains
+    reads = Controller(np.zeros((0, 0)), np.zeros((0, 2)), np.zeros((1, 0)), K_hf, E=np.zeros((0, 1)),
+                       F=[[0.5]])
+    with pytest.raises(ValueError, match=r"gains\[1\] reads ŵ directly"):
+        FDSC.from_gains(OSC, [K_lf, reads], BANDS, 1)
+    with pytest.raises(ValueError, match="x0 must be a numeric vector"):
+        filtered.simulate(D_SWITCH, time_grid(1.0, 1e-3), x0=[True, False])
+    with pytest.raises(ValueError, match="certificate must solve Theorem 1's LMIs"):
+        FDSC(OSC, [K_hf, Controller.filtered(K_lf, K_hf, 2.0)], BANDS, 1, filtered.certificate)
+    with pytest.raises(TypeError, match="synthesis must be None"):
+        FDSC(OSC, list(filtered.gains), BANDS, 1, filtered.certificate, synthesis="junk")
+    with pytest.raises(UnstableError, match=r"the closed loop of gains\[0\] is not stable"):
+        FDSC.from_gains(OSC, [np.array([[10.0, 0.0]]), K_hf], BANDS, 1)
+    with pytest.raises(DimensionError, match=r"Q\[0\]: expected shape \(4, 4\)"):
+        FDSC.from_gains(OSC, list(filtered.gains), BANDS, 1, Q=[np.eye(2), np.eye(2)])
+    with pytest.raises(TypeError, match="bands must be a list or tuple"):
+        FDSC.from_gains(OSC, list(filtered.gains), (b for b in BANDS), 1)
+    # python-control's static gain (no states, dt None) is a gain
+    again = FDSC.from_gains(OSC, [K_lf, control.ss([], [], [], K_hf)], BANDS, 1, Q=list(static.Q))
+    assert_array_equal(again.gains[1], K_hf)
 
 
 def test_bad_x0_names_both_sizes(filtered):
