@@ -152,7 +152,8 @@ def test_law_rows_label_the_stored_study_and_the_build_time_check():
     stored, check = law_rows(record(), full)
     assert stored["study"] == "stored study: 500 draws per example, computed at commit 048c47d"
     assert (stored["scored"], stored["median"], stored["wins"]) == ("250", "×0.984", "85 %")
-    assert check["study"].startswith("build-time check: the first 12 of the stored study's draws")
+    assert check["study"].startswith("build-time check: the procedure rerun on the first 12 draws")
+    assert "training draws of the stored study" in check["study"]
     assert (check["scored"], check["median"], check["wins"]) == ("6", "×0.959", "100 %")
     assert "sources have changed" in law_rows(record(), full, fresh=False)[0]["study"]
     assert [r["scored"] for r in law_rows(record(), None)] == ["6"]

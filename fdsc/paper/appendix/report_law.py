@@ -71,7 +71,8 @@ def law_rows(record, full=None, *, fresh=True):
     check = next((e for e in entries_of(record) if e["id"] == LAW_ENTRY), None)
     for example, r in (check or {}).get("recomputed", {}).items():
         n = int(r["draws_test"]) + int(r.get("draws_train", 0))
-        label = (f"build-time check: the first {count(n)} of the stored study's draws, recomputed when "
-                 "this page is built (same procedure and seed, a shorter search for the tuned designs)")
+        label = (f"build-time check: the procedure rerun on the first {count(n)} draws of the seeded "
+                 "sequence (training draws of the stored study), half to train, half to score, a "
+                 "shorter search for the tuned designs")
         rows.append(_law_row(label, example, r))
     return rows

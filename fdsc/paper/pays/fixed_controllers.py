@@ -161,11 +161,21 @@ def answer(full: dict) -> str:
         kind = (f"a controller with {fc['states']} states" if fc["states"] else "a static gain")
         old = fams["comparator set"]
         front = fams["static front"]
+        wins = (f"on {pct(old['chosen_wins'])} of the draws against either"
+                if pct(old["chosen_wins"]) == pct(front["chosen_wins"]) else
+                f"on {pct(old['chosen_wins'])} and {pct(front['chosen_wins'])} of the draws")
+        # the closest of every other fixed controller on the test draws, by median ratio
+        rivals = {k: np.asarray(v, dtype=float) for k, v in r["fixed_ratio"].items() if k != chosen}
+        near = min(rivals, key=lambda k: float(np.median(rivals[k])))
+        near_wins = float(np.mean(rivals[near] > 1.0))
         parts.append(
             f"On the **{example}** example the fixed controller chosen in advance is *{chosen}* ({kind}, "
             f"{r['fixed_in_advance_family']} family). The best member of the comparator set, chosen the "
             f"same way ({old['name']}), has a median {times(old['median'])} its energy on "
             f"{count(r['draws_test'])} test draws, the best point of the static front "
             f"({front['name']}) {times(front['median'])}; the chosen controller has less energy "
-            f"than they do on {pct(old['chosen_wins'])} and {pct(front['chosen_wins'])} of the draws.")
+            f"than they do {wins}. The closest of all the other fixed controllers on the test draws is "
+            f"*{near}* ({r['fixed_controllers'][near]['family']}): median {times(float(np.median(rivals[near])))}, "
+            f"and the chosen controller has less energy on {pct(near_wins)} of the draws, so the choice "
+            "made on the training draws is among the best, not alone at the top.")
     return " ".join(parts)

@@ -335,7 +335,7 @@ class PrintedBounds:
         list of dict
         """
         return [{"gain": b.gain, "band": b.band, "printed": f"{b.paper:.{b.decimals}f}",
-                 "peak": num(b.peak, 4), "lemma1": num(b.lemma1, 4), "factor": times(b.factor),
+                 "peak": num(b.peak, 4), "lemma1": num(b.lemma1, 4), "factor": times(b.factor, 5),
                  "holds": "yes" if b.holds else "no", "verdict": b.verdict, "why": b.stated()}
                 for b in self.bounds]
 
@@ -475,7 +475,7 @@ def printed_bounds() -> PrintedBounds:
         kind = GAIN_BANDS[gain]
         band, pair, paper = bands[kind], table.pair(gain, kind), ctrl[gain]["bound"]
         cl = plant.closed_loop(printed[gain])
-        cands = {"LMI γ of our recomputed gain": ours[gain].gamma_lmi,
+        cands = {"synthesis LMI bound of our recomputed gain": ours[gain].gamma_lmi,
                  "band peak of our recomputed gain": ours[gain].gamma_sweep,
                  "σ_max at ω = 0": float(sigma_max(cl, [0.0])[0]),
                  "squared band peak (γ² read for γ)": pair.peak**2}
