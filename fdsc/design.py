@@ -65,8 +65,8 @@ def _gains(gains, plant):
         if c.is_static:
             out.append(c.D)
             continue
-        growth = 0.0 if not c.n_states else float(np.max(np.linalg.eigvals(c.A).real))
-        if c.n_states and growth >= 0:
+        growth = float(np.max(np.linalg.eigvals(c.A).real)) if c.n_states else -np.inf
+        if growth >= 0:
             raise ValueError(f"gains[{k}] must be a controller that is stable on its own (its states run "
                              "while another mode is active), but A_k has an eigenvalue with real part "
                              f"{growth:.4g}")
@@ -94,6 +94,11 @@ def _check_certificate(cert, modes, bands):
     except (VerificationError, ValueError) as err:
         raise ValueError("certificate must solve Theorem 1's LMIs for these modes and bands (is it "
                          f"another design's?): {err}") from None
+
+
+def _size(plant, gains):
+    """N: the plant's states and those of every controller with states."""
+    return plant.n_states + sum(g.n_states for g in gains if isinstance(g, Controller))
 
 
 def _modes(plant, gains):
@@ -210,7 +215,7 @@ class FDSC:
         if len(self.certificate.Q) != len(gains):
             raise ValueError(f"certificate must hold one Q per mode ({len(gains)}), but holds "
                              f"{len(self.certificate.Q)}")
-        N = plant.n_states + sum(getattr(g, "n_states", 0) for g in gains)
+        N = _size(plant, gains)
         for k, q in enumerate(self.certificate.Q):
             if np.shape(q) != (N, N):
                 raise DimensionError(f"certificate.Q[{k}] must be ({N}, {N}), the modes' state size, "
@@ -245,7 +250,8 @@ class FDSC:
         in_band : int
             Index of the in-band mode (0-based).
         Q : sequence of (N, N) array_like, optional
-            The law's Q_i on the modes' state (N = n for gains). Given: certified by :func:`~fdsc.switching.certify_q`. Omitted:
+            The law's Q_i on the modes' state (N = n for gains). Given: certified by
+            :func:`~fdsc.switching.certify_q`. Omitted:
             designed by paper Remark 4 (:func:`~fdsc.switching.design_q`).
         gamma_tol : float, optional
             γ_tol of paper Remark 4 (used only when Q is omitted).
@@ -282,10 +288,11 @@ class FDSC:
             alone = g.closed_loop(plant) if isinstance(g, Controller) else plant.closed_loop(g)
             check_hurwitz(f"the closed loop of gains[{k}]", alone.A, "an FDSC mode")
         modes = _modes(plant, gains)
-        N = modes[0].n_states
+        N = _size(plant, gains)
         if Q is not None:
             if not isinstance(Q, list | tuple) or len(Q) != len(gains):
-                raise ValueError(f"Q must list one (N, N) matrix per mode ({len(gains)}), but found {Q!r:.60}")
+                raise ValueError(f"Q must list one (N, N) matrix per mode ({len(gains)}), but found "
+                                 f"{Q!r:.60}")
             Q = [as_matrix(f"Q[{k}]", q, (N, N)) for k, q in enumerate(Q)]
         if Q is None:
             cert = design_q(modes, bands, in_band, gamma_tol=gamma_tol)
@@ -359,7 +366,7 @@ class FDSC:
     @property
     def n_states(self) -> int:
         """Size N of the modes' state: n for gains, n + Σ k_i with controllers that have states."""
-        return self.plant.n_states + sum(getattr(g, "n_states", 0) for g in self.gains)
+        return _size(self.plant, self.gains)
 
     @property
     def Q(self) -> tuple:
@@ -441,7 +448,8 @@ class FDSC:
             As :func:`~fdsc.simulate.simulate` warns: in particular if the divergence monitor
             (:mod:`fdsc._divergence`) finds the switched run diverging.
         """
-        return simulate(list(self.modes), d, t, x0=_shared_x0(x0, self.plant.n_states, self.n_states), law_bands=list(self.bands),
+        x0 = _shared_x0(x0, self.plant.n_states, self.n_states)
+        return simulate(list(self.modes), d, t, x0=x0, law_bands=list(self.bands),
                         law_Q=list(self.Q), law=law, sigma0=sigma0, rule=rule, kernel=kernel,
                         **options)
 
@@ -534,5 +542,6 @@ class FDSC:
         >>> np.round(runs.time_share[:, 1], 2)          # share of the HF mode: slow tone, fast tone
         array([0.04, 0.89])
         """
-        return Case(list(self.modes), d, horizon, dt, x0=_shared_x0(x0, self.plant.n_states, self.n_states), law_bands=list(self.bands),
+        x0 = _shared_x0(x0, self.plant.n_states, self.n_states)
+        return Case(list(self.modes), d, horizon, dt, x0=x0, law_bands=list(self.bands),
                     law_Q=list(self.Q), law=law, sigma0=sigma0, rule=rule, label=label)

@@ -139,5 +139,6 @@ def test_more_bad_input_is_named(static, filtered):
 
 
 def test_bad_x0_names_both_sizes(filtered):
-    with pytest.raises(DimensionError, match=r"x0 must be the plant's state \(2,\) or the shared state \(4,\)"):
+    with pytest.raises(DimensionError,
+                       match=r"x0 must be the plant's state \(2,\) or the shared state \(4,\)"):
         filtered.simulate(D_SWITCH, time_grid(1.0, 1e-3), x0=[1.0, 0.0, 0.0])

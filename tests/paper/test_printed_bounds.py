@@ -3,7 +3,6 @@
 import json
 
 import numpy as np
-
 import pytest
 from jsonschema import Draft202012Validator
 from numpy.testing import assert_allclose

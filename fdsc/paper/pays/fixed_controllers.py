@@ -175,7 +175,8 @@ def answer(full: dict) -> str:
             f"{count(r['draws_test'])} test draws, the best point of the static front "
             f"({front['name']}) {times(front['median'])}; the chosen controller has less energy "
             f"than they do {wins}. The closest of all the other fixed controllers on the test draws is "
-            f"*{near}* ({r['fixed_controllers'][near]['family']}): median {times(float(np.median(rivals[near])))}, "
+            f"*{near}* ({r['fixed_controllers'][near]['family']}): median "
+            f"{times(float(np.median(rivals[near])))}, "
             f"and the chosen controller has less energy on {pct(near_wins)} of the draws, so the choice "
             "made on the training draws is among the best, not alone at the top.")
     return " ".join(parts)

@@ -118,7 +118,8 @@ def _ratio_range(series):
     return max(0.25, lo * math.exp(-pad)), min(4.0, hi * math.exp(pad))
 
 
-def plot_fixed_plane(points, chosen, ax=None, *, top=None, zoom=None, zoom_at=(0.3, 0.42, 0.42, 0.5)):
+def plot_fixed_plane(points, chosen, ax=None, *, top=None, zoom=None, zoom_at=(0.3, 0.42, 0.42, 0.5),
+                     named=None):
     """Every fixed controller in the plane of its LF and HF band peaks, by family; the static and
     dynamic fronts joined by lines, the one chosen in advance ringed.
 
@@ -135,6 +136,9 @@ def plot_fixed_plane(points, chosen, ax=None, *, top=None, zoom=None, zoom_at=(0
         place marked on the main axes.
     zoom_at : (float, float, float, float), optional
         Where the inset sits, in axes fractions ``(x, y, width, height)``.
+    named : str, optional
+        A family whose members are labelled by name where they are drawn (in the inset where the
+        inset shows them); members that coincide on the page share one label.
 
     Returns
     -------
@@ -182,7 +186,36 @@ def plot_fixed_plane(points, chosen, ax=None, *, top=None, zoom=None, zoom_at=(0
         inset.tick_params(labelsize=7)
         inset.get_legend().remove()
         ax.indicate_inset_zoom(inset, edgecolor="0.4")
+        if named is not None:
+            _name_members(inset, points, named)
+    if named is not None:
+        _name_members(ax, points, named)
     return ax, off
+
+
+def _name_members(ax, points, family):
+    """Label the members of ``family`` drawn inside ``ax`` (not those an inset of ``ax`` shows)."""
+    def inside(a, lf, hf):
+        (x0, x1), (y0, y1) = a.get_xlim(), a.get_ylim()
+        return x0 <= lf <= x1 and y0 <= hf <= y1
+
+    groups = {}
+    for name, (fam, lf, hf) in points.items():
+        if fam != family or not inside(ax, lf, hf) or any(inside(c, lf, hf) for c in ax.child_axes):
+            continue
+        fx, fy = ax.transAxes.inverted().transform(ax.transData.transform((lf, hf)))
+        near = next((k for k in groups if abs(k[0] - fx) < 0.03 and abs(k[1] - fy) < 0.03), (fx, fy))
+        groups.setdefault(near, []).append((name, lf, hf, fx))
+    order = sorted(groups.values(), key=lambda m: m[0][3])
+    for k, members in enumerate(order):
+        _name, lf, hf, fx = members[0]
+        crowded = k + 1 < len(order) and order[k + 1][0][3] - fx < 0.12   # a label follows close by
+        # left of a point near the left edge, right-aligned near the right edge or before a close
+        # neighbour, below and to the right elsewhere
+        dx, dy, ha = ((-5, -3, "right") if fx < 0.35 else (-4, -10, "right") if fx > 0.6 or crowded
+                      else (4, -10, "left"))
+        ax.annotate(", ".join(m[0] for m in members), (lf, hf), xytext=(dx, dy),
+                    textcoords="offset points", fontsize=7, ha=ha)
 
 
 def plot_family_ratios(ratios, reference, ax=None):

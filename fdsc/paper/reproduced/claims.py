@@ -379,7 +379,7 @@ def _summary_claims(sweep_rows, lf, hf, study):
          "FDSC below it": int(wins_chosen), "FDSC / it, largest": float(max(vs_chosen))},
         _grade(within2 == len(scen), wins > 0 or four > 0),
         ("PARTLY only by the paper's own demonstration (FDSC best of its four controllers "
-         f"somewhere): " if not wins and four and within2 < len(scen) else "")
+         "somewhere): " if not wins and four and within2 < len(scen) else "")
         + f"FDSC has less energy than the best fixed controller in {wins} of {len(scen)} scenarios "
         f"and is within a factor 2 of it in {within2}; at worst {times(max(ratio))} its energy "
         f"(scenario {scen[worst][0]}). Among the paper's four controllers only, FDSC has the least "

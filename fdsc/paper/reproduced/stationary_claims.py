@@ -352,7 +352,8 @@ class L2Claims:
         return {**{name: num(float(v), 4) for name, v in self.final.items()},
                 "ratio_min": num(float(self.ratios.min())), "ratio_max": num(float(self.ratios.max())),
                 "twice_verdict": (self.claim_twice.outcome if self.claim_twice.holds
-                                  or self.claim_twice.value[0] <= 1 else "partly holds"), "slow_pole_hf": num(self.slow_pole_hf),
+                                  or self.claim_twice.value[0] <= 1 else "partly holds"),
+                "slow_pole_hf": num(self.slow_pole_hf),
                 "time_constant_hf": _whole(round(self.time_constant_hf)),
                 "fdsc_beats_hf": self.fdsc_beats_hf}
 
