@@ -85,6 +85,29 @@ def _spectral_radius(M):
     return np.abs(np.linalg.eigvals(M)).max(axis=-1)
 
 
+#: Largest ‖A_i‖₁ τ accepted: the logarithm of ‖e^{A_i τ}‖ (at most this) and the 2^k of the
+#: squaring in :func:`_log_expm` stay floats.
+MAX_NORM_TAU = 2.0**1000
+
+
+_SPAN = "a mode's exponential, even normalized, spans more than the float range (its entries' ratio)"
+
+
+def _unrepresentable(tau, why):
+    return ValueError(f"taus must be short enough for e^(A_i tau) to be represented, but at tau = "
+                      f"{tau:g} s {why}; shorten the largest dwell")
+
+
+def _check_taus(A, taus):
+    """Refuse a τ for which ``‖A_i‖₁ τ`` or ``I τ`` leaves what :func:`_log_expm` can carry."""
+    for a in A:
+        norm = float(np.abs(a).sum(axis=0).max())
+        for tau in taus.tolist():         # Python floats: an overflow is inf, not a warning
+            if not (norm * tau <= MAX_NORM_TAU and math.isfinite(len(A) * tau)):
+                raise _unrepresentable(tau, f"‖A_i‖₁ tau = {norm * tau:.3g} exceeds {MAX_NORM_TAU:.3g}, "
+                                            "beyond what floats carry even as a logarithm")
+
+
 def _log_expm(a, tau):
     """``(F, g)`` with ``e^{aτ} = e^g F`` and ‖F‖ = 1 (Frobenius): e^{aτ/2^k} with
     ‖a‖₁τ/2^k ≤ 1, squared k times with the norm moved into g at each squaring."""
@@ -94,13 +117,27 @@ def _log_expm(a, tau):
     for _ in range(k + 1):
         s = float(np.linalg.norm(F))
         if not (s > 0 and math.isfinite(s)):
-            raise ValueError(f"taus must be short enough for e^(A_i tau) to be represented, but at "
-                             f"tau = {tau:g} s a mode's exponential, even normalized, spans more than "
-                             "the float range (its entries' ratio); shorten the largest dwell")
+            raise _unrepresentable(tau, _SPAN)
         F, g = F / s, g + math.log(s)
         if _ < k:
             F, g = F @ F, 2.0 * g
     return F, g
+
+
+def _log_radii(A, E, logs):
+    """``(log ρ, log R)``: of the products of equal dwells, and (two modes) of every pair."""
+    M = E[0]
+    for e in E[1:]:
+        M = e @ M
+    log_rho = np.log(_spectral_radius(M)) + sum(logs)
+    if len(A) != 2:
+        return log_rho, None
+    R = _spectral_radius(np.einsum("bij,ajk->abik", E[1], E[0]))      # R[a, b]: τ_1 = τ_a, τ_2 = τ_b
+    return log_rho, np.log(R) + logs[0][:, None] + logs[1][None, :]
+
+
+def _finite(log_rho, log_R):
+    return bool(np.all(np.isfinite(log_rho)) and (log_R is None or np.all(np.isfinite(log_R))))
 
 
 def _suffix_max(R):
@@ -130,7 +167,10 @@ def periodic_dwell_margin(modes, taus) -> PeriodicDwellMargin:
         If ``modes`` is not a list or tuple.
     ValueError
         If fewer than two modes are given, they differ in size, or ``taus`` is not positive and
-        strictly increasing.
+        strictly increasing, or a τ is so long that e^{A_i τ}, even divided by its norm, cannot be
+        represented in floats (its entries' ratio spans more than the float range, or ‖A_i‖ τ
+        itself overflows). A τ whose e^{A_i τ} merely underflows is kept: its ρ may round to 0,
+        its growth rate stays exact.
     DimensionError
         If a mode is not square or ``taus`` is not 1-D.
     UnstableError
@@ -157,34 +197,33 @@ def periodic_dwell_margin(modes, taus) -> PeriodicDwellMargin:
     taus = as_vector("taus", taus)
     if taus.size == 0 or taus[0] <= 0 or np.any(np.diff(taus) <= 0):
         raise ValueError(f"taus must be positive and strictly increasing, but found {taus}")
+    _check_taus(A, taus)
     with np.errstate(all="ignore"):
         try:
             # one call per matrix: scipy's batched expm is slow for the large ‖Aτ‖ of stiff modes
             E = [np.array([expm(a * tau) for tau in taus]) for a in A]
             logs = [np.zeros(taus.size) for _ in A]
-            clean = all(np.all(np.isfinite(e)) for e in E)
+            clean = all(np.all(np.isfinite(e)) for e in E) and _finite(*_log_radii(A, E, logs))
         except (ValueError, np.linalg.LinAlgError, OverflowError):
             clean = False
-        M = E[0] if clean else None
-        for e in E[1:] if clean else []:
-            M = e @ M
-        clean = clean and bool(np.all(_spectral_radius(M) > 0))
         if not clean:
             # a τ so long that e^{Aτ} leaves the float range: each factor as a normalized matrix
             # times e^{log}, by squaring (so ρ and its growth rate come out in log space)
             pairs = [[_log_expm(a, tau) for tau in taus] for a in A]
             E = [np.array([f for f, _ in p]) for p in pairs]
             logs = [np.array([g for _, g in p]) for p in pairs]
-            M = E[0]
-            for e in E[1:]:
-                M = e @ M
-        log_rho = np.log(_spectral_radius(M)) + sum(logs)
+        log_rho, log_R = _log_radii(A, E, logs)
+        if not _finite(log_rho, log_R):
+            # e^{A_i τ} is invertible, so a product of them has ρ > 0: a product of the
+            # normalized factors that is singular has lost entries below the float range
+            bad = ~np.isfinite(log_rho)
+            if log_R is not None:
+                bad |= ~np.all(np.isfinite(log_R), axis=0) | ~np.all(np.isfinite(log_R), axis=1)
+            raise _unrepresentable(float(taus[bad].max()), _SPAN)
         rho = np.exp(log_rho)
     growth = log_rho / (len(A) * taus)
     if len(A) == 2:
         with np.errstate(all="ignore"):
-            R = _spectral_radius(np.einsum("bij,ajk->abik", E[1], E[0]))
-            log_R = np.log(R) + logs[1][:, None] + logs[0][None, :]
             R = np.exp(log_R)
         G = log_R / (taus[:, None] + taus[None, :])
         rho_worst = np.diagonal(_suffix_max(R)).copy()

@@ -251,12 +251,38 @@ class Controller:
         return out
 
     def size(self) -> float:
-        """The largest gain of the controller from x to u over frequency (the largest singular
-        value of its response on a log grid from 10⁻³ to 10⁶ rad/s and at ∞), a measure of how
-        hard it drives u."""
-        w = np.r_[np.logspace(-3, 6, 400)]
-        s = np.linalg.svd(self.response(w), compute_uv=False).max()
-        return float(max(s, np.linalg.norm(self.D, 2)))
+        """The largest gain of the controller from x to u over frequency, a measure of how hard
+        it drives u.
+
+        Returns
+        -------
+        float
+            ``sup_ω σ_max(D_k + C_k (jω − A_k)⁻¹ B_k)`` over ω ≥ 0 and ∞, found as
+            :func:`fdsc.band_peak` finds a peak (a grid through the resonances of A_k, refined
+            around its maxima; A_k need not be stable); ``inf`` if A_k has an eigenvalue on the
+            imaginary axis (the gain is unbounded there).
+
+        Examples
+        --------
+        A resonance of damping 10⁻⁴ between any grid's points: 1 / (2ζ) = 5000 at ω ≈ 3.3.
+
+        >>> zeta, w0 = 1e-4, 3.3
+        >>> c = Controller([[0.0, 1.0], [-w0**2, -2 * zeta * w0]], [[0.0], [1.0]], [[w0**2, 0.0]],
+        ...                [[0.0]])
+        >>> round(c.size())
+        5000
+        """
+        if self.n_states == 0:
+            return float(np.linalg.norm(self.D, 2)) if self.D.size else 0.0
+        from .bands import Band
+        from .frequency import DEFAULT_GRID_POINTS, POLE_RTOL, _peak
+        from .plant import LTISystem
+
+        ev = np.linalg.eigvals(self.A)
+        if np.any(np.abs(ev.real) <= POLE_RTOL * np.maximum(1.0, np.abs(ev))):
+            return float("inf")
+        sys = LTISystem(self.A, self.B, self.C, self.D)
+        return float(_peak(sys, Band.entire(), ev, DEFAULT_GRID_POINTS, 1e-10).gamma)
 
     def _check(self, plant, name):
         if self.D.shape != (plant.n_controls, plant.n_states):
@@ -376,7 +402,10 @@ def as_controller(obj, plant=None, name: str = "controller") -> Controller:
         abcd = _statespace_matrices(obj, name, static_ok=True)
         if abcd is not None:
             A, B, C, D = (np.asarray(a, dtype=float) for a in abcd)
-            c = Controller(A, B, C, D)
+            try:
+                c = Controller(A, B, C, D)
+            except ValueError as exc:                   # DimensionError included: name the argument
+                raise type(exc)(f"{name} (a StateSpace from x to u): its {exc}") from None
         else:
             if isinstance(obj, str | bytes | dict) or obj is None:
                 raise TypeError(f"{name} must be a gain (m_u, n), an fdsc.Controller or a StateSpace "
@@ -411,8 +440,8 @@ def switched_loops(plant, controllers, *, estimate_input: bool = False) -> list:
     TypeError, DimensionError
         As :func:`as_controller` raises them, naming ``controllers[i]``.
     ValueError
-        If a controller with states is unstable on its own (its states would grow while it is
-        not in the loop).
+        If ``controllers`` is empty, or a controller with states is unstable on its own (its
+        states would grow while it is not in the loop).
 
     Examples
     --------
@@ -425,6 +454,9 @@ def switched_loops(plant, controllers, *, estimate_input: bool = False) -> list:
     from .plant import LTISystem
 
     cs = [as_controller(c, plant, f"controllers[{i}]") for i, c in enumerate(controllers)]
+    if not cs:
+        raise ValueError("controllers must hold at least one controller (one per mode), but found "
+                         "none")
     for i, c in enumerate(cs):
         if c.n_states and len(cs) > 1 and np.max(np.linalg.eigvals(c.A).real) >= 0:
             raise ValueError(f"controllers[{i}] is unstable on its own (A_k has an eigenvalue with real "

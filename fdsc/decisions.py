@@ -7,13 +7,14 @@ their restarts, the fading monitoring signals and the relative hysteresis.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
 
 from ._validation import as_nonnegative
-from .exceptions import EnergyOverflowError, MemoryLimitError
+from .exceptions import EnergyOverflowError, EnergyUnderflowWarning, MemoryLimitError
 
 __all__ = ["SupervisedRun"]
 
@@ -179,16 +180,29 @@ def _scaled(d, e):
     return Piecewise(d.breaks, [_scaled(p, e) for p in d.parts])
 
 
+#: What :func:`_unscale` is told it unscales when it brings back monitoring signals: they may
+#: underflow silently (documented: the law decides on the scaled ones); an energy that does is
+#: returned with an EnergyUnderflowWarning.
+MONITORING_SIGNAL = "a monitoring signal"
+
+
 def _unscale(value, e, power=2, where="", what="the energy"):
     """``value`` times 2^(power·e) (an energy: power 2; a state: power 1), refused by name if it
-    leaves the float range there."""
-    if e == 0:
-        return value
-    with np.errstate(over="ignore"):
-        out = np.ldexp(value, power * e)
-    if np.all(np.isfinite(value)) and not np.all(np.isfinite(out)):
+    leaves the float range above (EnergyOverflowError); an energy that is not 0 but falls below
+    the smallest normal float, where it keeps few digits or none, is returned with an
+    EnergyUnderflowWarning (the decisions were taken at scale, and stand)."""
+    with np.errstate(over="ignore", under="ignore"):
+        out = np.ldexp(value, power * e) if e else value
+    if e and np.all(np.isfinite(value)) and not np.all(np.isfinite(out)):
         raise EnergyOverflowError(f"{where}{what} exceeds the float range (about 1.8e308) in the "
                                   "disturbance's units: scale the disturbance (or x0) down")
+    tiny = np.finfo(float).tiny
+    if what != MONITORING_SIGNAL and np.any((np.asarray(value) != 0) & (np.abs(out) < tiny)):
+        warnings.warn(f"{where}{what} is below the smallest normal float (about {tiny:.2g}) in the "
+                      f"disturbance's units, where it keeps few digits or none (found "
+                      f"{float(np.max(np.abs(out))):.3g}); the decisions, taken at scale, stand: "
+                      "scale the disturbance (or x0) up for its digits", EnergyUnderflowWarning,
+                      stacklevel=3)
     return float(out) if np.ndim(out) == 0 else out
 
 

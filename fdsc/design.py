@@ -256,7 +256,8 @@ class FDSC:
         gamma_tol : float, optional
             γ_tol of paper Remark 4 (used only when Q is omitted).
         n_disturbances : int, optional
-            Number of disturbance inputs of a python-control ``StateSpace`` plant.
+            Number of disturbance inputs of a python-control ``StateSpace`` plant, its first
+            inputs (default 1, as everywhere: :func:`~fdsc.plant.as_plant`).
 
         Returns
         -------
@@ -326,7 +327,8 @@ class FDSC:
         gamma_tol : float, optional
             γ_tol of paper Remark 4.
         n_disturbances : int, optional
-            Number of disturbance inputs of a python-control ``StateSpace`` plant.
+            Number of disturbance inputs of a python-control ``StateSpace`` plant, its first
+            inputs (default 1, as everywhere: :func:`~fdsc.plant.as_plant`).
         **synthesis_options
             Passed to :func:`~fdsc.synthesis.synthesize` for the band-limited gains
             (``epsilon``, ``sigma``, ``margin``, ``stability``).

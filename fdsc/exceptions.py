@@ -16,6 +16,7 @@ __all__ = [
     "SingularFrequencyError",
     "MemoryLimitError",
     "EnergyOverflowError",
+    "EnergyUnderflowWarning",
     "UnstableRunWarning",
 ]
 
@@ -138,6 +139,17 @@ class EnergyOverflowError(FdscError, OverflowError):
     The simulators scale such runs by a power of two so that their sums do not overflow on the
     way (the loop is linear); only a total that cannot be represented in the caller's units is
     refused, with this error."""
+
+
+class EnergyUnderflowWarning(UserWarning):
+    """A run's energy is not zero but lies below the smallest normal float (≈ 2.2e-308) in the
+    caller's units, where a float keeps few digits or none (a disturbance of amplitude about
+    1e-155 or less).
+
+    The run itself is made at a scale where its energies are of order one (a power of two,
+    exact), so its decisions and states are those of the unscaled run; only the energies brought
+    back into the caller's units lose their digits, and this warning says so.
+    """
 
 
 class UnstableRunWarning(UserWarning):

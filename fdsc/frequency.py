@@ -245,6 +245,12 @@ def band_peak(sys: LTISystem, band: Band, *, n_grid: int = DEFAULT_GRID_POINTS,
     n_grid = as_count("n_grid", n_grid, 10)
     xtol = as_positive("xtol", xtol)
     ev = check_hurwitz("sys", sys.A, "the band peak (an L2 gain)")
+    return _peak(sys, band, ev, n_grid, xtol)
+
+
+def _peak(sys, band, ev, n_grid, xtol):
+    """The search of :func:`band_peak` for a validated system with eigenvalues ``ev``, none on the
+    imaginary axis (stable or not: :meth:`fdsc.Controller.size` searches unstable controllers)."""
     normA = float(np.linalg.norm(sys.A, 2)) if sys.n_states else 0.0
     scale = max(normA, float(np.max(np.abs(ev), initial=0.0)), 1.0)
     extra = list(np.abs(ev.imag)) + list(np.abs(ev))

@@ -99,7 +99,7 @@ def fit_shaping_filter(frequencies, powers, edges) -> LTISystem:
     powers : (N,) array_like
         Their mean powers (a²/2 times the share of time they are on).
     edges : sequence of float
-        Increasing frequencies between the groups.
+        Frequencies between the groups (rad/s, positive and finite; taken in increasing order).
 
     Returns
     -------
@@ -108,7 +108,8 @@ def fit_shaping_filter(frequencies, powers, edges) -> LTISystem:
     Raises
     ------
     ValueError
-        If a group holds no tone, or the input is out of range.
+        If a group holds no tone, or the input is out of range (an edge that is not a positive
+        finite frequency is named as ``edges``).
 
     Examples
     --------
@@ -118,7 +119,9 @@ def fit_shaping_filter(frequencies, powers, edges) -> LTISystem:
     31.62
     """
     w, P = as_vector("frequencies", frequencies), as_vector("powers", powers)
-    e = np.sort(np.asarray(edges, dtype=float).ravel())
+    e = np.sort(as_vector("edges", edges))
+    if np.any(e <= 0):
+        raise ValueError(f"edges must be positive frequencies (rad/s), but found {e.tolist()}")
     if w.size != P.size or w.size == 0 or np.any(w <= 0) or np.any(P < 0):
         raise ValueError("frequencies must be positive, powers non-negative, of one length ≥ 1")
     group = np.searchsorted(e, w)
@@ -152,8 +155,8 @@ def h2_controller(plant, shaping, *, reads: str = "x", noise: float = DEFAULT_NO
 
     Parameters
     ----------
-    plant : Plant
-        One disturbance input.
+    plant : Plant, control.StateSpace or tuple
+        One disturbance input (:func:`fdsc.as_plant`: a StateSpace's first input is it).
     shaping : LTISystem
         F: one input (white noise), one output (d), stable, strictly proper (D = 0).
     reads : {"x", "x+w"}, optional

@@ -26,7 +26,7 @@ import cvxpy as cp
 import numpy as np
 from scipy.optimize import minimize
 
-from ._validation import as_count, as_nonnegative, as_positive, as_vector, check_type
+from ._validation import as_count, as_matrix, as_nonnegative, as_positive, as_vector, check_type
 from .bands import Band
 from .exceptions import SolverError, VerificationError
 from .frequency import band_peak, sigma_max
@@ -444,6 +444,14 @@ def dominating_gain(plant: Plant, objective: Band, constrained: Band, peak, star
         The dominating gain and its peaks ``[objective, constrained]``, or None if the search
         found none (which proves nothing: a local search).
 
+    Raises
+    ------
+    DimensionError
+        If a start is not of shape ``(m_u, n)`` (the message names ``starts[k]``).
+    ValueError
+        If ``starts`` is empty or an entry of ``starts[k]`` is not finite and real, or ``peak``
+        is not two positive finite peaks.
+
     Examples
     --------
     >>> from fdsc import random_plant, synthesize
@@ -464,11 +472,11 @@ def dominating_gain(plant: Plant, objective: Band, constrained: Band, peak, star
                          f"{peak.tolist()}")
     if not hasattr(starts, "__len__") or len(starts) == 0:
         raise ValueError("starts must hold at least one gain")
-    starts = [np.asarray(s, dtype=float) for s in starts]
+    shape = (plant.n_controls, plant.n_states)
+    starts = [as_matrix(f"starts[{k}]", s, shape) for k, s in enumerate(starts)]
     n_grid, maxiter = as_count("n_grid", n_grid, 2), as_count("maxiter", maxiter)
     penalty, tol = as_positive("penalty", penalty), as_nonnegative("tol", tol)
     w_obj, w_con = _objective_grid(objective, n_grid), _objective_grid(constrained, n_grid)
-    shape = starts[0].shape
     scale = max(1.0, max(float(np.linalg.norm(s)) for s in starts))
     target = peak[1] * (1.0 - BOUND_MARGIN)
 

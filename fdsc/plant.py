@@ -305,9 +305,11 @@ def as_plant(plant: "Plant | control.StateSpace | tuple", name: str = "plant", *
     name : str, optional
         Name of the argument, for error messages.
     n_disturbances : int, optional
-        Number of disturbance inputs of a ``StateSpace`` plant (required for one: a StateSpace
-        does not say which inputs are controls); for a Plant or a tuple it may be given and
-        must then equal B1's columns.
+        Number of disturbance inputs of a ``StateSpace`` plant (a StateSpace does not say which
+        inputs are controls): default 1, its first input, the rule of every function of fdsc
+        that takes a plant (convert a plant with more disturbances with this function first, or
+        give ``n_disturbances=`` where a function takes it). For a Plant or a tuple it may be
+        given and must then equal B1's columns.
 
     Returns
     -------
@@ -316,8 +318,7 @@ def as_plant(plant: "Plant | control.StateSpace | tuple", name: str = "plant", *
     Raises
     ------
     TypeError
-        If ``plant`` is none of the accepted types, or a StateSpace comes without
-        ``n_disturbances``.
+        If ``plant`` is none of the accepted types.
     ValueError
         If ``n_disturbances`` leaves no disturbance or no control input or contradicts a
         Plant's B1, if a python-control system is discrete-time, or if an entry is not finite
@@ -330,7 +331,7 @@ def as_plant(plant: "Plant | control.StateSpace | tuple", name: str = "plant", *
     >>> import control
     >>> ss = control.ss([[0.0, 1.0], [-2.0, -0.5]], [[0.0, 0.0], [1.0, 1.0]],
     ...                 [[1.0, 0.0], [0.0, 0.0]], [[0.0, 0.0], [0.0, 1.0]])
-    >>> p = as_plant(ss, n_disturbances=1)
+    >>> p = as_plant(ss)                     # the first input is the disturbance
     >>> p.B1.shape, p.B2.shape, p.D2.ravel().tolist()
     ((2, 1), (2, 1), [0.0, 1.0])
     """
@@ -345,22 +346,20 @@ def as_plant(plant: "Plant | control.StateSpace | tuple", name: str = "plant", *
         return plant
     if isinstance(plant, LTISystem):
         raise TypeError(f"{name} must be an open-loop plant with separate disturbance and control "
-                        "inputs (Plant, a StateSpace with n_disturbances, or (A, B1, B2, C, D1, D2)), "
+                        "inputs (Plant, a StateSpace with inputs [d; u], or (A, B1, B2, C, D1, D2)), "
                         "but found an LTISystem")
     abcd = _statespace_matrices(plant, name)
     if abcd is not None:
-        if n_disturbances is None:
-            raise TypeError(f"{name}: a StateSpace plant needs n_disturbances= (how many of its "
-                            f"{abcd[1].shape[1]} inputs, taken first, are disturbances)")
-        k = as_count("n_disturbances", n_disturbances)
+        k = 1 if n_disturbances is None else as_count("n_disturbances", n_disturbances)
         m = abcd[1].shape[1]
         if k >= m:
             raise ValueError(f"n_disturbances must be below the number of inputs {m} (at least one "
-                             f"control input), but found {k}")
+                             f"control input), but found {k}"
+                             + (" (the default: the first input is the disturbance)"
+                                if n_disturbances is None else ""))
         A, B, C, D = (np.asarray(x) for x in abcd)
         return Plant(A, B[:, :k], B[:, k:], C, D[:, :k], D[:, k:])
     if isinstance(plant, tuple | list) and len(plant) == 6:
         return Plant(*plant)
-    raise TypeError(f"{name} must be an fdsc.Plant, a python-control StateSpace (with "
-                    f"n_disturbances) or a tuple (A, B1, B2, C, D1, D2), but found "
-                    f"{type(plant).__name__}")
+    raise TypeError(f"{name} must be an fdsc.Plant, a python-control StateSpace (inputs [d; u]) "
+                    f"or a tuple (A, B1, B2, C, D1, D2), but found {type(plant).__name__}")

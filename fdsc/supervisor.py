@@ -113,11 +113,9 @@ class Supervisor:
     def __init__(self, plant, gains, *, law: str = "cost", bands=None, decide_every: float = 0.1,
                  restart: float = 20.0, K0=None):
         from ._validation import as_choice, as_matrix
-        from .plant import _statespace_matrices, as_plant
+        from .plant import as_plant
 
-        # the law is for one disturbance: a python-control StateSpace's first input is it
-        ss = not isinstance(plant, tuple | list) and _statespace_matrices(plant, "plant") is not None
-        plant = as_plant(plant, n_disturbances=1 if ss else None)
+        plant = as_plant(plant)          # a python-control StateSpace: its first input is d
         n, mu_ = plant.n_states, plant.n_controls
         if plant.B1.shape[1] != 1:
             raise ValueError("plant must have one disturbance input (B1 of shape (n, 1)), found "

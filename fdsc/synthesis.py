@@ -25,12 +25,13 @@ import cvxpy as cp
 import numpy as np
 from scipy.optimize import minimize
 
+from ._plant_scaling import normalize_plant
 from ._validation import as_count, as_matrix, as_nonnegative, as_positive, check_type
 from .bands import Band
 from .exceptions import InfeasibleError, IterationLimitError, VerificationError
 from .frequency import band_peak, sigma_max
 from .kyp import supply_parts
-from .lmi import DEFAULT_MARGIN, _sym, real_embedding_parts, solve_checked
+from .lmi import DEFAULT_MARGIN, MARGIN_RETRIES, _sym, real_embedding_parts, solve_checked
 from .plant import Plant, as_plant
 
 __all__ = ["SynthesisResult", "DirectResult", "synthesize", "synthesize_hinf", "optimize_gain",
@@ -174,13 +175,15 @@ def _pos_def(re, im, margin):
     return _sym(E) >> margin * np.eye(E.shape[0])
 
 
-def _finish(plant, band, X, Y, g, prob, what, t0, epsilon, sigma, stability=True):
+def _finish(plant, band, X, Y, g, prob, what, t0, epsilon, sigma, stability=True, scaling=None):
     status = solve_checked(prob, what)
     elapsed = time.perf_counter() - t0
     Xv = X.value
     K = np.linalg.solve(Xv.T, Y.value.T).T  # K = Y X⁻¹
-    cl = plant.closed_loop(K)
     gamma_lmi = float(np.sqrt(g.value))
+    if scaling is not None:      # solved in normalized units (synthesize_hinf): back to the plant's
+        K, gamma_lmi = scaling.gain(K), scaling.gamma(gamma_lmi)
+    cl = plant.closed_loop(K)
     if not cl.is_hurwitz():
         if stability:
             raise VerificationError(f"{what}: the returned gain does not stabilize the plant "
@@ -364,7 +367,9 @@ def synthesize_hinf(plant: Plant, *, margin: float = DEFAULT_MARGIN) -> Synthesi
     plant : Plant
         The open-loop plant; the closed loop is ``(A + B2 K, B1, C + D2 K, D1)``.
     margin : float, optional
-        Strictness margin of the LMI; default :data:`~fdsc.lmi.DEFAULT_MARGIN`.
+        Strictness margin of the LMI in normalized units (B1, B2 and ``[C, D1, D2]`` of unit
+        norm); default :data:`~fdsc.lmi.DEFAULT_MARGIN`. Multiplied by 10 and then 100 when an
+        inaccurate solve fails its checks.
 
     Returns
     -------
@@ -391,6 +396,11 @@ def synthesize_hinf(plant: Plant, *, margin: float = DEFAULT_MARGIN) -> Synthesi
     realization; with P = X the matrix is ``Fᵀ(Φ⊗X)F + supply`` of
     :func:`fdsc.kyp.kyp_matrix`, affine in ``Z_A`` and ``Z_C``.
 
+    The LMI is solved for the plant in normalized units (d, u and z divided by the norms of B1,
+    B2 and the output) and the gain mapped back, so that a change of the units of z, d or u
+    gives the same gain in the new units and γ scaled by the change, up to the solver's
+    tolerance.
+
     Examples
     --------
     >>> from fdsc import random_plant
@@ -401,16 +411,31 @@ def synthesize_hinf(plant: Plant, *, margin: float = DEFAULT_MARGIN) -> Synthesi
     plant = as_plant(plant)
     margin = as_positive("margin", margin)
     check_stabilizable(plant)
+    # solved in units where B1, B2 and the output have unit norm (fdsc._plant_scaling): the
+    # margin and the solver's tolerances are absolute, so the plant's units must be taken out
+    scaling = normalize_plant(plant)
+    for k, factor in enumerate(MARGIN_RETRIES):
+        X, Y, g, prob = _hinf_problem(scaling.plant, margin * factor)
+        t0 = time.perf_counter()
+        try:
+            return _finish(plant, Band.entire(), X, Y, g, prob, "H-infinity synthesis", t0,
+                           float("nan"), float("nan"), scaling=scaling)
+        except VerificationError as exc:
+            # as in Lemma 1 (fdsc.lmi): an 'optimal_inaccurate' point can sit just outside the
+            # cone (singular problems put X on its margin); a larger margin moves it inward
+            if exc.status != cp.OPTIMAL_INACCURATE or k == len(MARGIN_RETRIES) - 1:
+                raise
+
+
+def _hinf_problem(plant, margin):
+    """``(X, Y, g, problem)`` of the H∞ synthesis LMI for ``plant`` (normalized units)."""
     n, mu, p = plant.n_states, plant.n_controls, plant.C.shape[0]
     X = cp.Variable((n, n), symmetric=True, name="X")
     Y = cp.Variable((mu, n), name="Y")
     g = cp.Variable(name="gamma_sq", nonneg=True)
     M = _hinf_lmi(plant, X, Y, g)
     cons = [_sym(M) << -margin * np.eye(n + p), X >> margin * np.eye(n)]
-    prob = cp.Problem(cp.Minimize(g), cons)
-    t0 = time.perf_counter()
-    return _finish(plant, Band.entire(), X, Y, g, prob, "H-infinity synthesis", t0,
-                   float("nan"), float("nan"))
+    return X, Y, g, cp.Problem(cp.Minimize(g), cons)
 
 
 @dataclass(frozen=True)

@@ -28,6 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._plant_scaling import normalize_plant
 from ._validation import as_nonnegative, as_positive, as_vector, check_type
 from .bands import Band
 from .controller import Controller
@@ -142,7 +143,9 @@ def weighted_hinf(plant, lf: Band, hf: Band, w_lf: float, w_hf: float, *, u_pena
 
     Parameters
     ----------
-    plant : Plant
+    plant : Plant, control.StateSpace or tuple
+        The open-loop plant (:func:`fdsc.as_plant`: a StateSpace's first input is the
+        disturbance; convert one with more with ``fdsc.as_plant(sys, n_disturbances=k)``).
     lf, hf : Band
         The LF and HF bands (see :func:`band_weight`).
     w_lf, w_hf : float
@@ -166,6 +169,16 @@ def weighted_hinf(plant, lf: Band, hf: Band, w_lf: float, w_hf: float, *, u_pena
     InfeasibleError, SolverError, VerificationError
         As :func:`fdsc.synthesize_hinf` raises them.
 
+    Notes
+    -----
+    The weighted plant is built from the plant in normalized units (d, u and z divided by the
+    norms of B1, B2 and ``[C, D1, D2]``; ρ carried along so that the problem is the one posed)
+    and the controller mapped back, so that a change of the units of d or u, or of z together
+    with ``u_penalty``, gives the same closed loop, its γ and band peaks scaled by the change, up
+    to the solver's tolerance. Where the optimum is not unique (the weighted norm leaves the
+    peak of the band with the smaller weight free below its bound) that band's peak may move by
+    up to a few parts in 10³ between such rescalings.
+
     Examples
     --------
     >>> from fdsc import random_plant
@@ -179,7 +192,13 @@ def weighted_hinf(plant, lf: Band, hf: Band, w_lf: float, w_hf: float, *, u_pena
     plant = as_plant(plant)
     rho = as_nonnegative("u_penalty", u_penalty)
     W = band_weight(lf, hf, w_lf, w_hf, floor=floor, corner=corner)
-    A, B1, B2, C, D1, D2 = plant.A, plant.B1, plant.B2, plant.C, plant.D1, plant.D2
+    # designed in normalized units (fdsc._plant_scaling; the weight's states see z̃ = c_z z), so
+    # that the units of z, d and u do not change the design; ‖[W z; ρ u]‖ = ‖[W z̃; ρ̃ ũ]‖ / c_z
+    # with ρ̃ = ρ a_u c_z keeps the problem the caller posed
+    sc = normalize_plant(plant)
+    rho = rho * sc.a_u * sc.c_z
+    A, B1, B2, C, D1, D2 = (sc.plant.A, sc.plant.B1, sc.plant.B2, sc.plant.C, sc.plant.D1,
+                            sc.plant.D2)
     nz, n, m = C.shape[0], plant.n_states, plant.n_controls
     Aw = np.kron(np.eye(nz), W.A)
     Bw = np.kron(np.eye(nz), W.B)
@@ -197,12 +216,14 @@ def weighted_hinf(plant, lf: Band, hf: Band, w_lf: float, w_hf: float, *, u_pena
     res = synthesize_hinf(Plant(Aa, B1a, B2a, Ca, D1a, D2a))
     Kx, Kw = res.K[:, :n], res.K[:, n:]
     reads = bool(np.any(D1))
-    ctrl = Controller(Aw + Bw @ D2 @ Kw, Bw @ (C + D2 @ Kx), Kw, Kx,
-                      E=Bw @ D1 if reads else None, F=np.zeros((m, B1.shape[1])) if reads else None,
-                      name=name)
+    # back to the plant's units: ŵ̃ = ŵ / a_d, u = a_u ũ (the weight's states keep z̃'s units)
+    ctrl = Controller(Aw + Bw @ D2 @ Kw, Bw @ (C + D2 @ Kx), sc.a_u * Kw, sc.gain(Kx),
+                      E=Bw @ D1 / sc.a_d if reads else None,
+                      F=np.zeros((m, B1.shape[1])) if reads else None, name=name)
     loop = ctrl.closed_loop(plant)
     peaks = {"LF": band_peak(loop, lf).gamma, "HF": band_peak(loop, hf).gamma}
-    return WeightedDesign(ctrl, float(res.gamma_lmi), peaks, ctrl.poles(), ctrl.size(), loop.poles())
+    return WeightedDesign(ctrl, sc.gamma(float(res.gamma_lmi)), peaks, ctrl.poles(), ctrl.size(),
+                          loop.poles())
 
 
 @dataclass(frozen=True)
@@ -242,7 +263,8 @@ def dynamic_front(plant, lf: Band, hf: Band, ratios, *, u_penalty: float = 0.0,
 
     Parameters
     ----------
-    plant : Plant
+    plant : Plant, control.StateSpace or tuple
+        As :func:`weighted_hinf` takes it.
     lf, hf : Band
     ratios : (k,) array_like
         Positive ratios.

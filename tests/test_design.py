@@ -109,7 +109,9 @@ def test_as_system_accepts_every_form_and_they_agree():
     (lambda: as_system(([[-1.0]], [[1.0]], [[1.0]])), TypeError, "found tuple"),
     (lambda: as_system(control.ss([[0.5]], [[1.0]], [[1.0]], [[0.0]], 0.1)), ValueError, "continuous-time"),
     (lambda: as_system(control.tf([1.0], [1.0, 1.0])), TypeError, "convert with control.ss"),
-    (lambda: as_plant(control.ss(A, np.eye(2), np.eye(2), np.zeros((2, 2)))), TypeError, "n_disturbances="),
+    # a StateSpace's first input is the disturbance unless n_disturbances says otherwise
+    (lambda: as_plant(control.ss(A, [[1.0], [0.0]], np.eye(2), np.zeros((2, 1)))), ValueError,
+     r"below the number of inputs 1 .* \(the default: the first input is the disturbance\)"),
     (lambda: as_plant(control.ss(A, np.eye(2), np.eye(2), np.zeros((2, 2))), n_disturbances=2), ValueError,
      "at least one control input"),
     (lambda: as_plant(LTISystem(A, [[0.0], [1.0]], [[1.0, 0.0]], [[0.0]])), TypeError, "found an LTISystem"),

@@ -29,19 +29,46 @@ from fdsc.paper.record import JOBS_ENV, reproduction_record
 from fdsc.paper.shared.results import RECORD_DIGITS, to_jsonable
 
 __all__ = ["main", "reproduce", "cold_times_command", "disturbance_law_command", "to_jsonable",
-           "RECORD_DIGITS"]
+           "RECORD_DIGITS", "SCHEDULER_TIMEOUT"]
 
 
-def _writable_dir(path):
-    """Create ``path`` if needed and check that a file can be written there, before computing."""
+#: How long ``disturbance-law --scheduler`` waits for the Dask scheduler before giving up.
+SCHEDULER_TIMEOUT = "10s"
+
+
+def _cannot_write(folder):
+    """Why no file can be written in ``folder`` (created if missing), or None if one can."""
+    for above in (folder, *folder.parents):
+        if above.exists():
+            if not above.is_dir():
+                return f"{above} is a file, not a folder"
+            break
     try:
-        path.mkdir(parents=True, exist_ok=True)
-        probe = path / ".fdsc-write-test"
+        folder.mkdir(parents=True, exist_ok=True)
+        probe = folder / ".fdsc-write-test"
         probe.write_text("", encoding="utf-8")
         probe.unlink()
     except OSError as exc:
-        raise SystemExit(f"python -m fdsc reproduce: --out {path}: cannot write there "
-                         f"({exc.strerror or exc})") from None
+        return exc.strerror or str(exc)
+    return None
+
+
+def _writable_dir(path, prog, flag="--out"):
+    """Create the folder ``path`` if needed and check that a file can be written there, before
+    computing; else exit with a message signed by the command ``prog`` and naming ``flag``."""
+    why = _cannot_write(path)
+    if why:
+        raise SystemExit(f"{prog}: {flag} {path}: cannot write there ({why})")
+
+
+def _writable_file(path, prog, flag="--out"):
+    """Check, before computing, that the file ``path`` can be written: not a folder, in a folder
+    that is or can be made one and is writable."""
+    if path.is_dir():
+        raise SystemExit(f"{prog}: {flag} {path}: is a folder, but a file to write is expected")
+    why = _cannot_write(path.parent)
+    if why:
+        raise SystemExit(f"{prog}: {flag} {path}: cannot write its folder {path.parent} ({why})")
 
 
 def reproduce(argv=None):
@@ -69,7 +96,7 @@ def reproduce(argv=None):
     args = parser.parse_args(sys.argv[2:] if argv is None else argv)
     if args.jobs is not None and args.jobs < 1:
         parser.error(f"--jobs must be at least 1, found {args.jobs}")
-    _writable_dir(args.out)
+    _writable_dir(args.out, parser.prog)
     t0 = time.perf_counter()
     saved = os.environ.get(JOBS_ENV)
     if args.jobs is not None:
@@ -117,7 +144,7 @@ def cold_times_command(argv=None):
     args = parser.parse_args(sys.argv[2:] if argv is None else argv)
     if not (args.book / "_toc.yml").is_file():
         parser.error(f"--book must be the book's folder (with _toc.yml), found {args.book}")
-    _writable_dir(args.out.parent)
+    _writable_file(args.out, parser.prog)
     result = measure_cold_times(args.book, args.out)
     print(f"wrote {args.out}: {len(result['chapters'])} chapters, "
           f"{sum(result['chapters'].values()):.0f} s in all on {result['host']['cpus']} CPUs")
@@ -137,12 +164,16 @@ def disturbance_law_command(argv=None):
     Returns
     -------
     int
-        0.
+        0. A bad argument (``--n`` below :data:`~fdsc.paper.pays.disturbance_law_full.N_MIN`, an
+        ``--out`` that cannot be written, a scheduler that does not answer) exits with a one-line
+        message before any computing.
     """
     import argparse
     from concurrent.futures import ProcessPoolExecutor
 
     from fdsc.paper.pays.disturbance_law import FULL_FILE, N_FULL, full_study, measured_robustness, robustness
+    from fdsc.paper.pays.disturbance_law_full import N_MIN
+    from fdsc.paper.shared.fixed_choice import FILE as CHOICE_FILE
 
     parser = argparse.ArgumentParser(prog="python -m fdsc disturbance-law",
                                      description="the full study of the law on the disturbance estimate")
@@ -161,20 +192,24 @@ def disturbance_law_command(argv=None):
     parser.add_argument("--measured-only", action="store_true",
                         help="add only the runs on sampled measurements to an existing --out file")
     args = parser.parse_args(sys.argv[2:] if argv is None else argv)
-    if args.n < 2:
-        parser.error(f"--n must be at least 2, but found {args.n}")
+    if args.n < N_MIN:
+        parser.error(f"--n must be at least {N_MIN} (half of the draws train, half are scored), but "
+                     f"found {args.n}")
     if args.workers < 1:
         parser.error(f"--workers must be at least 1, but found {args.workers}")
     if args.replace:
         args.out = root / FULL_FILE
+    if (args.robustness_only or args.measured_only) and not args.out.is_file():
+        parser.error(f"--robustness-only and --measured-only need the full study in {args.out}, "
+                     "which does not exist")
+    _writable_file(args.out, parser.prog, "--replace" if args.replace else "--out")
+    if args.replace:
+        _writable_file(Path(__file__).resolve().parent / "data" / CHOICE_FILE, parser.prog, "--replace")
     start = time.perf_counter()
 
     def run(executor):
         if not (args.robustness_only or args.measured_only):
             return full_study(args.n, executor=executor, out=args.out)
-        if not args.out.is_file():
-            parser.error(f"--robustness-only and --measured-only need the full study in {args.out}, "
-                         "which does not exist")
         result = json.loads(args.out.read_text())
         if args.robustness_only:
             result["robustness"] = robustness(result, executor=executor)
@@ -185,7 +220,12 @@ def disturbance_law_command(argv=None):
     if args.scheduler:
         from dask.distributed import Client
 
-        with Client(args.scheduler) as client:
+        try:
+            client = Client(args.scheduler, timeout=SCHEDULER_TIMEOUT)
+        except (OSError, ValueError) as exc:       # unreachable (a timeout), or not an address
+            raise SystemExit(f"{parser.prog}: --scheduler {args.scheduler}: cannot connect to a Dask "
+                             f"scheduler there ({exc})") from None
+        with client:
             result = run(client)
     else:
         # one BLAS thread per worker: the step tables are small matrix exponentials, and several
