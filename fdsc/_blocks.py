@@ -7,17 +7,31 @@ On an interval where the disturbance is ``d(t) = Σ_j a_j sin(ω_j t + φ_j)``, 
 ``ẋ = A x + B d, z = C x + D d`` and the tones' oscillators ``c_j = cos(ω_j t + φ_j)``,
 ``s_j = sin(ω_j t + φ_j)`` form one autonomous linear system ``ξ̇ = F ξ``, ``ξ = [x; a∘c; a∘s]``
 (the oscillators scaled by their amplitudes, so that F and G do not depend on them and a large
-amplitude does not unbalance the block exponential), ``z = G ξ`` with ``G = [C, 0, D 1ᵀ]``. Over
+amplitude does not unbalance F), ``z = G ξ`` with ``G = [C, 0, D 1ᵀ]``. Over
 a step of length h
 
     x(t + h) = [Φ, M] ξ(t),       ∫_t^{t+h} ‖z‖² = ξ(t)ᵀ Q ξ(t),
 
-with ``[Φ, M]`` the top rows of ``e^{Fh}`` and ``Q = ∫₀^h e^{Fᵀs} GᵀG e^{Fs} ds`` (Van Loan's
-block exponential). Both are exact: no quadrature, no dependence on a sampling step. The block
-exponential is taken at ``h / 2^k`` with ``‖F‖₁ h / 2^k ≤ 1`` and doubled k times
-(``Q(2h) = Q(h) + e^{Fᵀh} Q(h) e^{Fh}``), so that a stiff loop (a pole at −5·10⁵ /s) does not
-overflow the ``e^{−Fᵀh}`` block. The oscillators' state at the start of a step is computed from
-the absolute time (cos and sin), not propagated, so no rounding accumulates.
+with ``[Φ, M]`` the top rows of ``e^{Fh}`` and ``Q = ∫₀^h e^{Fᵀs} GᵀG e^{Fs} ds``. Both are
+exact: no quadrature, no dependence on a sampling step. They are Taylor series at ``h / 2^k``
+with ``‖F‖₁ h / 2^k ≤ 1``, doubled k times in the form ``e^{Fh} = I + E``: ``E ← 2E + E²``,
+``Q ← 2Q + QE + EᵀQ + EᵀQE`` (squaring I + E itself would round away the slow modes' small
+departures from 1 at every doubling, an error that grows like 2^k). The oscillators' state at the
+start of a step is computed from the absolute time (cos and sin), not propagated, so no rounding
+accumulates.
+
+A stiff system is integrated in other coordinates. When the sorted magnitudes of A's
+eigenvalues have a gap of :data:`STIFF_GAP` or more, ``η = R x`` separates the groups
+(:func:`_separate`: an ordered Schur form and a Sylvester equation per gap; the similarity by
+compensated products, :mod:`fdsc._compensated`). The reason is where the digits go in physical
+coordinates: in a loop whose controller has a pole at −2·10⁵ /s beside plant poles near −2 /s,
+the fast controller state follows a quasi-static function of the slow ones and the output reads
+it through gains of 10⁵, so z is a small difference of terms 10⁵ times larger; GᵀG, Q and the
+quadratic form ``ξᵀQξ`` then hold terms 10¹⁰ times the energy, and their rounding (in forming
+GᵀG, in every doubling, in the final sum) cost five digits. In η the fast coordinate is the
+departure from the quasi-static value and every term is of the size of the result. The state is
+still carried in physical coordinates (``[Φ, M]`` maps ξ to x); the step's energy is ``ηᵀQη``
+with ``η = [R x; a∘c; a∘s]`` and Q in those coordinates.
 
 The steps are the intervals between consecutive instants of a grid that contains every break of
 the disturbance; steps of equal length on the same piece share one ``(Φ, M, Q)``. A compiled
@@ -32,11 +46,22 @@ import math
 
 import numpy as np
 from numba import njit
-from scipy.linalg import expm
+from scipy.linalg import schur, solve_sylvester
 
+from ._compensated import dot, refined_inverse, similar
 from .signals import Piecewise, Sinusoids
 
 __all__ = []
+
+#: Sorted eigenvalue magnitudes of a system's A that differ by this factor or more split its
+#: state into groups, integrated in coordinates that separate them (module docstring).
+STIFF_GAP = 10.0
+#: A split is made only if its coupling (the Sylvester solution X of :func:`_separate`) has no
+#: entry above this: beyond it the groups' subspaces are nearly parallel, and the physical
+#: coordinates are the better conditioned.
+MAX_COUPLING = 1e4
+# Taylor terms at most (‖F h₀‖₁ ≤ 1 needs about 20 for E and 25 for Q)
+_TAYLOR_CAP = 40
 
 
 def pieces(d, horizon: float) -> list:
@@ -63,11 +88,103 @@ def pieces(d, horizon: float) -> list:
     return out
 
 
-def _pair(A, B, C, D, w, h, ch=None):
-    """``([Φ, M], Q)`` of one step of length h for unit amplitudes (module docstring), padded by
-    the caller. ``ch`` (one entry per tone) is the input column each tone drives, for a system
-    with two inputs ``[d; ŵ]`` on a grid of two signals; a system with one input is driven by
-    the tones of channel 0 (d) only."""
+def _separate(T):
+    """``(S, S⁻¹)`` with ``S⁻¹ T S`` block diagonal, one block per group of eigenvalues whose
+    sorted magnitudes are linked by ratios below :data:`STIFF_GAP` (the groups split at the
+    largest gap first: an ordered real Schur form, then a Sylvester equation for the coupling);
+    ``(None, None)`` if there is one group. A split whose coupling needs a transformation larger
+    than :data:`MAX_COUPLING`, or that LAPACK cannot order, is not made."""
+    n = T.shape[0]
+    if n < 2:
+        return None, None
+    mag = np.sort(np.abs(np.linalg.eigvals(T)))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = mag[1:] / mag[:-1]
+    ratio[~np.isfinite(ratio)] = np.inf                     # a zero eigenvalue beside others
+    c = int(np.argmax(ratio))
+    if not ratio[c] >= STIFF_GAP:
+        return None, None
+    tau2 = mag[c] * mag[c + 1]                              # |λ|² at the gap's geometric middle
+    try:
+        Ts, U, m = schur(T, output="real", sort=lambda re, im: re * re + im * im <= tau2)
+        X = solve_sylvester(Ts[:m, :m], -Ts[m:, m:], -Ts[:m, m:]) if m == c + 1 else None
+    except np.linalg.LinAlgError:                           # LAPACK could not reorder or solve
+        X = None
+    if X is None or not np.all(np.isfinite(X)) or np.abs(X).max(initial=0.0) > MAX_COUPLING:
+        return None, None
+    S = U.copy()
+    S[:, m:] += U[:, :m] @ X
+    Si = U.T.copy()
+    Si[:m] -= X @ U[:, m:].T
+    for sl in (slice(0, m), slice(m, n)):                   # the groups on either side
+        S2, S2i = _separate(Ts[sl, sl])
+        if S2 is not None:
+            S[:, sl] = S[:, sl] @ S2
+            Si[sl] = S2i @ Si[sl]
+    return S, Si
+
+
+def _coordinates(A, B, C, D):
+    """The system ``(A, B, C, D, S, S⁻¹)`` in the coordinates ``x = S η`` of a split of A
+    (:func:`_separate`; the similarity by compensated products, S⁻¹ refined once so that it is
+    exact to rounding whatever S's condition), or as given with ``S = S⁻¹ = None`` if there is
+    none."""
+    if A.shape[0] >= 2 and np.all(np.isfinite(A)):
+        S, Si = _separate(A)
+        if S is not None:
+            Si = refined_inverse(S, Si)
+            return similar(Si, A, S), dot(Si, B), dot(C, S), D, S, Si
+    return A, B, C, D, None, None
+
+
+def _gram(F, M, h):
+    """``(E, Q)`` with ``E = e^{Fh} − I`` and ``Q = ∫₀^h e^{Fᵀs} M e^{Fs} ds``: Taylor series
+    at ``h₀ = h / 2^k`` (``‖F‖₁ h₀ ≤ 1``), then k doublings ``Q ← 2Q + QE + EᵀQ + EᵀQE``,
+    ``E ← 2E + E²`` (I + E squared without forming I + E, whose rounding would grow like 2^k
+    for the slow modes)."""
+    W = F.shape[0]
+    if W == 0:
+        return np.zeros((0, 0)), np.zeros((0, 0))
+    norm = float(np.abs(F).sum(axis=0).max()) * h
+    k = max(0, math.ceil(math.log2(norm))) if norm > 1 else 0
+    return _gram_kernel(np.ascontiguousarray(F, dtype=float), np.ascontiguousarray(M, dtype=float),
+                        h / 2**k, norm / 2**k, k)
+
+
+@njit(cache=True)
+def _gram_kernel(F, M, h0, theta, k):
+    W = F.shape[0]
+    Fh = F * h0
+    eye = np.eye(W)
+    # E(h0) = Fh (I + Fh/2 (I + Fh/3 (…))), to a term below 2⁻⁶⁰ of the first
+    m, term = 1, theta
+    while term > 2.0**-60 and m < _TAYLOR_CAP:
+        m += 1
+        term *= theta / m
+    E = eye.copy()
+    for j in range(m, 1, -1):
+        E = eye + (Fh @ E) / j
+    E = Fh @ E
+    # Q(h0) = h0 Σ_j L^j(M) / (j + 1)!, L(X) = Fhᵀ X + X Fh (X symmetric: XFh + (XFh)ᵀ)
+    X, Q, c, j = M.copy(), M.copy(), 1.0, 0
+    while j < _TAYLOR_CAP:
+        j += 1
+        Y = X @ Fh
+        X = Y + Y.T
+        c /= j + 1
+        Q += c * X
+        if c * (2 * theta) ** j <= 2.0**-60:
+            break
+    Q *= h0
+    for _ in range(k):
+        QE = Q @ E
+        Q = 2.0 * Q + (QE + QE.T) + np.ascontiguousarray(E.T) @ QE
+        E = 2.0 * E + E @ E
+    return E, 0.5 * (Q + Q.T)
+
+
+def _augmented(A, B, C, D, w, ch):
+    """``(F, G)`` of ``ξ = [x; a∘c; a∘s]`` (module docstring)."""
     n, T = A.shape[0], w.size
     W = n + 2 * T
     F = np.zeros((W, W))
@@ -87,22 +204,40 @@ def _pair(A, B, C, D, w, h, ch=None):
     G[:, :n] = C
     if T:
         G[:, n + T:] = Dt
-    GtG = G.T @ G
-    norm = float(np.abs(F).sum(axis=0).max()) * h
-    k = max(0, math.ceil(math.log2(norm))) if norm > 1 else 0
-    h0 = h / 2**k
-    big = np.zeros((2 * W, 2 * W))
-    big[:W, :W] = -F.T
-    big[:W, W:] = GtG
-    big[W:, W:] = F
-    E = expm(big * h0)
-    Phi = E[W:, W:]
-    Q = Phi.T @ E[:W, W:]
-    for _ in range(k):
-        Q = Q + Phi.T @ Q @ Phi
-        Phi = Phi @ Phi
-    Q = 0.5 * (Q + Q.T)
-    return Phi[:n], Q
+    return F, G
+
+
+def _step(system, w, h, ch=None):
+    """``([Φ, M], Q, R)`` of one step of length h for unit amplitudes, for a system in the
+    coordinates of :func:`_coordinates`: ``[Φ, M]`` maps ξ to x at the step's end, and the energy
+    is ``ηᵀ Q η`` with ``η = [R x; a∘c; a∘s]`` in the coordinates of a split (module docstring),
+    or ``ξᵀ Q ξ`` with ``R = None`` where there is none; ``ch`` as in :func:`_pair`."""
+    A, B, C, D, S, Si = system
+    n = A.shape[0]
+    F, G = _augmented(A, B, C, D, w, ch)
+    E, Q = _gram(F, G.T @ G, h)
+    top = E[:n]
+    top[:, :n] += np.eye(n)
+    if S is None:
+        return top, Q, None
+    P = S @ top
+    P[:, :n] = P[:, :n] @ Si
+    return P, Q, Si
+
+
+def _pair(A, B, C, D, w, h, ch=None):
+    """``([Φ, M], Q)`` of one step of length h for unit amplitudes (module docstring), padded by
+    the caller, Q the energy's quadratic form in ξ. ``ch`` (one entry per tone) is the input
+    column each tone drives, for a system with two inputs ``[d; ŵ]`` on a grid of two signals; a
+    system with one input is driven by the tones of channel 0 (d) only."""
+    P, Q, R = _step(_coordinates(A, B, C, D), w, h, ch)
+    if R is not None:
+        n = A.shape[0]
+        RR = np.eye(Q.shape[0])
+        RR[:n, :n] = R
+        Q = RR.T @ Q @ RR
+        Q = 0.5 * (Q + Q.T)
+    return P, Q
 
 
 def _merged(d, estimate, horizon):
@@ -170,31 +305,39 @@ class Grid:
         self.cs = cs
 
     def tables(self, systems) -> tuple:
-        """``(PHI, Q)`` of shapes ``(kinds, systems, n, n + 2T)`` and ``(kinds, systems, n + 2T,
-        n + 2T)`` for systems ``(A, B, C, D)`` of one state size n."""
+        """``(PHI, Q, R, split)`` for systems ``(A, B, C, D)`` of one state size n: PHI
+        ``(kinds, systems, n, n + 2T)`` maps ξ to the state at a step's end, Q ``(kinds,
+        systems, n + 2T, n + 2T)`` is the step energy's quadratic form in ``η = [R x; a∘c;
+        a∘s]`` for a system that is split (``split[i]``; R ``(systems, n, n)``) and in ξ
+        otherwise (module docstring)."""
         n = systems[0][0].shape[0]
         W = n + 2 * self.T
         PHI = np.zeros((len(self.kinds), len(systems), n, W))
         Q = np.zeros((len(self.kinds), len(systems), W, W))
+        R = np.zeros((len(systems), n, n))
+        split = np.zeros(len(systems), dtype=np.bool_)
+        coords = [_coordinates(*sy) for sy in systems]
         for k, (pc, h) in enumerate(self.kinds):
             _t0, _t1, w, _a, _ph = self.pieces[pc]
             T = w.size
             ch = None if self.channels is None else self.channels[pc]
             idx = np.r_[np.arange(n), n + np.arange(T), n + self.T + np.arange(T)]
-            for i, (A, B, C, D) in enumerate(systems):
+            for i, (_A, B, _C, _D) in enumerate(systems):
                 if ch is None and B.shape[1] != 1:
                     raise ValueError(f"a system with {B.shape[1]} inputs needs a grid of as many "
                                      "signals (an estimate beside d)")
-                P, q = _pair(A, B, C, D, w, h, ch)
+                P, q, r = _step(coords[i], w, h, ch)
                 PHI[k, i][:, idx] = P
                 Q[k, i][np.ix_(idx, idx)] = q
-        return PHI, Q
+                if r is not None:
+                    R[i], split[i] = r, True
+        return PHI, Q, R, split
 
     def run(self, tables, system, restart, x0, start: int = 0, stop: int | None = None) -> tuple:
         """Energies of the steps ``start … stop − 1``, the largest ``|x_r|`` at the end of each,
         and the final state, of a run that takes, on step s, the system ``system[s]`` (an index
         into the tables; a scalar for all) and starts it from rest if ``restart[s]``."""
-        PHI, Q = tables
+        PHI, Q, R, split = tables
         stop = self.kind.size if stop is None else stop
         S = stop - start
         system = np.broadcast_to(np.asarray(system, dtype=np.int64), (self.kind.size,))[start:stop].copy()
@@ -206,7 +349,7 @@ class Grid:
         restart = np.broadcast_to(np.asarray(restart, dtype=np.bool_), (self.kind.size,))[start:stop].copy()
         e, big = np.empty(S), np.empty(S)
         x = np.array(x0, dtype=float)
-        _steps(self.kind[start:stop], system, restart, self.cs[start:stop], PHI, Q, x, e, big)
+        _steps(self.kind[start:stop], system, restart, self.cs[start:stop], PHI, Q, R, split, x, e, big)
         return e, big, x
 
     def per_block(self, e) -> np.ndarray:
@@ -215,10 +358,11 @@ class Grid:
 
 
 @njit(cache=True)
-def _steps(kind, system, restart, cs, PHI, Q, x, e, big):
+def _steps(kind, system, restart, cs, PHI, Q, R, split, x, e, big):
     n = x.shape[0]
     W = PHI.shape[3]
     xi = np.empty(W)
+    eta = np.empty(W)
     for s in range(kind.shape[0]):
         if restart[s]:
             for r in range(n):
@@ -228,12 +372,22 @@ def _steps(kind, system, restart, cs, PHI, Q, x, e, big):
             xi[r] = x[r]
         for r in range(n, W):
             xi[r] = cs[s, r - n]
+            eta[r] = xi[r]
+        if split[m]:                    # the energy in the split's coordinates, the state in x's
+            for r in range(n):
+                row = 0.0
+                for c in range(n):
+                    row += R[m, r, c] * x[c]
+                eta[r] = row
+        else:
+            for r in range(n):
+                eta[r] = x[r]
         acc = 0.0
         for r in range(W):
             row = 0.0
             for c in range(W):
-                row += Q[k, m, r, c] * xi[c]
-            acc += xi[r] * row
+                row += Q[k, m, r, c] * eta[c]
+            acc += eta[r] * row
         e[s] = acc
         top = 0.0
         for r in range(n):

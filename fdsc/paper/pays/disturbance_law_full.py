@@ -10,7 +10,8 @@ from pathlib import Path
 
 import numpy as np
 
-from fdsc._validation import as_count
+from fdsc._closed_energy import MODAL, SCHUR, closed_form_energies
+from fdsc._validation import as_choice, as_count
 from fdsc.paper.pays.disturbance_law_draws import SEED
 from fdsc.paper.pays.disturbance_law_robust import (
     MEASURED_DT,
@@ -24,11 +25,14 @@ from fdsc.paper.pays.disturbance_law_study import choose, law_key
 from fdsc.paper.pays.fixed_designs import FixedSet, fixed_set
 from fdsc.paper.shared.examples import beats
 
-__all__ = ["N_FULL", "FULL_FILE", "N_ROBUST", "ROBUST_SNR_DB", "full_study", "stored_fixed_set", "robustness",
-           "measured_robustness", "load_full", "map_draws"]
+__all__ = ["N_FULL", "N_MIN", "FULL_FILE", "N_ROBUST", "ROBUST_SNR_DB", "full_study", "stored_fixed_set",
+           "robustness", "measured_robustness", "load_full", "map_draws"]
 
 #: Draws per example of the full study.
 N_FULL = 500
+#: Fewest draws per example a study takes (:func:`full_study`; as
+#: :func:`fdsc.paper.pays.disturbance_law.study`): half train, half test.
+N_MIN = 4
 #: Where the full study is stored (relative to the repository root).
 FULL_FILE = Path("book") / "data" / "disturbance_law_full.json"
 #: Test draws per example and SNRs (dB) of the study of a noisy estimate.
@@ -68,7 +72,7 @@ def full_study(n: int = N_FULL, *, seed: int = SEED, executor=None, out=None) ->
     Parameters
     ----------
     n : int, optional
-        Draws per example (half train, half test).
+        Draws per example (half train, half test), at least :data:`N_MIN`.
     seed : int, optional
     executor : concurrent.futures.Executor or dask.distributed.Client, optional
         Where the draws run (default here, one after the other); the numbers do not depend on it.
@@ -85,7 +89,7 @@ def full_study(n: int = N_FULL, *, seed: int = SEED, executor=None, out=None) ->
     from fdsc.paper.shared.cache import source_fingerprint
     from fdsc.paper.shared.environment import build_commit
 
-    n = as_count("n", n, 4)
+    n = as_count("n", n, N_MIN)
     result = {"commit": build_commit(), "fingerprint": source_fingerprint(), "n": n, "seed": seed}
     for example in ("aircraft", "generic"):
         fs = fixed_set(example, n, seed)
@@ -121,6 +125,27 @@ def full_study(n: int = N_FULL, *, seed: int = SEED, executor=None, out=None) ->
     return result
 
 
+def _stored_example(full, example) -> dict:
+    """The stored study of one example, refused by name (which key is missing) if ``full`` is not
+    a stored study holding it."""
+    example = as_choice("example", example, ("aircraft", "generic"))
+    if not isinstance(full, dict):
+        raise TypeError(f"full must be the stored full study (the dict load_full returns), but found "
+                        f"{type(full).__name__}" + (" (load_full() returns None outside a checkout "
+                                                     "of the repository)" if full is None else ""))
+    missing = [k for k in ("n", "seed", example) if k not in full]
+    if missing:
+        raise KeyError(f"full: the stored study has no key {missing[0]!r} (found {sorted(full)})")
+    r = full[example]
+    for key in ("fixed_controllers", "fixed_in_advance", "pairs", "law", "test_indices", "fixed_ratio"):
+        if key not in r:
+            raise KeyError(f"full[{example!r}]: the stored study has no key {key!r}")
+    if r["fixed_in_advance"] not in r["fixed_controllers"]:
+        raise KeyError(f"full[{example!r}]['fixed_in_advance'] names {r['fixed_in_advance']!r}, which "
+                       f"has no stored controller in full[{example!r}]['fixed_controllers']")
+    return r
+
+
 def stored_fixed_set(full: dict, example: str) -> FixedSet:
     """The fixed controllers of a stored full study, rebuilt from their stored matrices (to
     recompute stored draws without redoing the designs).
@@ -135,10 +160,19 @@ def stored_fixed_set(full: dict, example: str) -> FixedSet:
     -------
     FixedSet
         With the stored names, families, band peaks, scores, choice and pairs; no tuning details.
+
+    Raises
+    ------
+    TypeError
+        If ``full`` is not a dict (e.g. None: :func:`load_full` outside a checkout).
+    ValueError
+        If ``example`` is not one of the two examples.
+    KeyError
+        Naming the key the stored study lacks (the example, or ``fixed_in_advance``'s controller).
     """
     import fdsc
 
-    r = full[example]
+    r = _stored_example(full, example)
 
     def ctrl(m, name):
         E, F = (m["E"], m["F"]) if "E" in m else (None, None)
@@ -182,32 +216,60 @@ def recheck_stored(full: dict, example: str, k: int = 2) -> dict:
     -------
     dict
         ``draws`` (k), ``controllers`` (how many ratios per draw), ``largest_difference`` (the
-        largest relative difference between a recomputed and a stored ratio) and ``chosen``.
+        largest relative difference between a ratio recomputed by the engine that computed the
+        study, :meth:`fdsc.Prepared.energy_of`, and the stored one), ``second_method`` (how many
+        energies, one per controller and draw, the chosen one's included, a second, independent
+        method computed by each of its closed forms: ``{"modal closed form": …, "Schur closed
+        form": …}``; never by the block engine),
+        ``second_difference`` (the largest relative difference between a ratio by the second
+        method and the stored one: an error of the engine itself shows here, while the first
+        difference, the engine against its own numbers, cannot see it) and ``chosen``.
+
+    Notes
+    -----
+    The second method integrates each fixed loop from rest in closed form, piece by piece of the
+    disturbance: in its real modal form (the eigenvectors' similarity formed by compensated
+    products) where the eigenvectors are well conditioned, in its complex Schur form elsewhere
+    (:func:`fdsc._closed_energy.closed_form_energies`). It shares none of the engine's Taylor
+    series, doublings or separated coordinates.
 
     Raises
     ------
+    TypeError
+        If ``full`` is not a dict (e.g. None: :func:`load_full` outside a checkout).
     ValueError
-        If ``k`` is not a count between 1 and the stored test draws.
+        If ``example`` is not one of the two examples, or ``k`` is not a count between 1 and the
+        stored test draws.
+    KeyError
+        Naming the key the stored study lacks (the example, or ``fixed_in_advance``'s controller).
     """
     import fdsc
     from fdsc.paper.pays.disturbance_law_draws import DECIDE_EVERY, RESTART, seeded_draw
 
-    r = full[example]
+    r = _stored_example(full, example)
     k = as_count("k", k, 1)
     if k > len(r["test_indices"]):
         raise ValueError(f"k must be at most the {len(r['test_indices'])} stored test draws, but found {k}")
     fs = stored_fixed_set(full, example)
-    worst = 0.0
+    worst = second = 0.0
+    methods = {MODAL: 0, SCHUR: 0}
     for j, index in enumerate(r["test_indices"][:k]):
         ex, dr = seeded_draw(example, index, full["seed"])
         K = fdsc.lqr_gain(ex.plant)          # any candidates: a fixed loop's energy is its own
         prep = fdsc.Supervisor(ex.plant, [K, K], decide_every=DECIDE_EVERY,
                                restart=RESTART).prepare(dr.d, dr.horizon)
-        ref = prep.energy_of(fs.controllers[fs.chosen])
+        names = list(dict.fromkeys([fs.chosen, *r["fixed_ratio"]]))
+        engine = {name: prep.energy_of(fs.controllers[name]) for name in names}
+        closed = {}
+        for name in names:
+            loop = fs.controllers[name].closed_loop(ex.plant)
+            e, method = closed_form_energies(loop, [dr.d], [dr.horizon])
+            closed[name], methods[method] = float(e[0]), methods[method] + 1
         for name, ratios in r["fixed_ratio"].items():
-            now = prep.energy_of(fs.controllers[name]) / ref
-            worst = max(worst, abs(now / ratios[j] - 1.0))
+            worst = max(worst, abs(engine[name] / engine[fs.chosen] / ratios[j] - 1.0))
+            second = max(second, abs(closed[name] / closed[fs.chosen] / ratios[j] - 1.0))
     return {"draws": k, "controllers": len(r["fixed_ratio"]), "largest_difference": worst,
+            "second_method": methods, "second_difference": second,
             "chosen": fs.chosen}
 
 
@@ -306,9 +368,26 @@ def load_full(path=None):
     Returns
     -------
     dict or None
-        None if the file is absent (outside a checkout of the repository).
+        None if ``path`` is not given and the default file is absent (outside a checkout of the
+        repository: the book and the findings then fall back on the record).
+
+    Raises
+    ------
+    FileNotFoundError
+        If an explicit ``path`` is not a file, naming it.
+    ValueError
+        If the file is not valid JSON (e.g. truncated), naming it and where the JSON breaks.
     """
-    path = Path(__file__).resolve().parents[3] / FULL_FILE if path is None else Path(path)
+    if path is None:
+        path = Path(__file__).resolve().parents[3] / FULL_FILE
+        if not path.is_file():
+            return None
+    path = Path(path)
     if not path.is_file():
-        return None
-    return json.loads(path.read_text())
+        raise FileNotFoundError(f"path: the stored study {path} does not exist (or is not a file)")
+    try:
+        return json.loads(path.read_text(encoding="utf-8"))
+    except json.JSONDecodeError as exc:
+        raise ValueError(f"path: the stored study {path} is not valid JSON ({exc.msg} at line "
+                         f"{exc.lineno}, column {exc.colno}): truncated or damaged? rerun python -m "
+                         "fdsc disturbance-law") from None
