@@ -31,16 +31,17 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import minimize
 
-from ._validation import as_choice, as_count, as_positive, check_type
+from ._validation import as_choice, as_count, as_positive, as_vector, check_type
 from .controller import Controller, as_controller
-from .exceptions import EnergyOverflowError
+from .decisions import _largest, _scaled
+from .exceptions import EnergyOverflowError, InfeasibleError, UnstableError
 from .plant import LTISystem, as_plant
 from .signals import Piecewise, Sinusoids
 
 __all__ = ["loop_energy", "TuneResult", "tune_controller", "STRUCTURES", "UNSTABLE"]
 
 #: The search's structures.
-STRUCTURES = ("static", "filtered")
+STRUCTURES = ("static", "filtered", "held")
 #: The objective's value for a loop that is not Hurwitz (above any mean log energy met in
 #: practice: e^1000 overflows).
 UNSTABLE = 1e3
@@ -167,7 +168,8 @@ def loop_energy(loop, d, horizon: float, *, x0=None) -> float:
     Raises
     ------
     TypeError, ValueError
-        If the input is not of these types or the loop has more than one input.
+        If the input is not of these types, the loop has more than one input, or x0 has the
+        wrong size or a non-finite entry.
     EnergyOverflowError
         If the energy exceeds the float range.
 
@@ -182,7 +184,7 @@ def loop_energy(loop, d, horizon: float, *, x0=None) -> float:
     if loop.B.shape[1] != 1:
         raise ValueError(f"loop must have one input, but has {loop.B.shape[1]}")
     g = _grid(d, horizon)
-    x = None if x0 is None else np.asarray(x0, dtype=float).reshape(loop.A.shape[0])
+    x = None if x0 is None else as_vector("x0", x0, loop.A.shape[0])
     e = _run(loop, g, x)
     if not math.isfinite(e):
         raise EnergyOverflowError("loop_energy: the energy exceeds the float range (about 1.8e308)")
@@ -217,6 +219,51 @@ class TuneResult:
     structure: str
 
 
+#: The largest relative excess of the tuned loop's H∞ norm over ``hinf_cap`` that is accepted (the
+#: penalty is evaluated on a grid; the refined sweep may find a peak slightly above it).
+CAP_RTOL = 1e-3
+
+
+def _training(disturbances, horizons):
+    """The training draws validated, each scaled by a power of two to a largest amplitude in
+    [½, 1), and the shift ``mean_k 2 e_k log 2`` that restores the mean log energy of the draws as
+    given: the objective then does not depend on the disturbances' units (an energy near 1e-320
+    would otherwise be subnormal or zero)."""
+    if isinstance(disturbances, Sinusoids | Piecewise) or not hasattr(disturbances, "__len__"):
+        raise TypeError("disturbances must be a sequence of Sinusoids or Piecewise")
+    if not hasattr(horizons, "__len__") or len(disturbances) == 0 or len(disturbances) != len(horizons):
+        found = len(horizons) if hasattr(horizons, "__len__") else repr(horizons)
+        raise ValueError(f"disturbances and horizons must be non-empty and of one length, but found "
+                         f"{len(disturbances)} and {found}")
+    out, exps = [], []
+    for k, (d, h) in enumerate(zip(disturbances, horizons, strict=True)):
+        check_type(f"disturbances[{k}]", d, Sinusoids | Piecewise, "an fdsc.Sinusoids or fdsc.Piecewise")
+        as_positive(f"horizons[{k}]", h)
+        big = _largest(d)
+        if big == 0.0:
+            raise ValueError(f"disturbances[{k}] is zero: its log energy is undefined (leave it out)")
+        e = math.frexp(big)[1]
+        exps.append(e)
+        out.append(_scaled(d, e))
+    return out, [float(h) for h in horizons], 2.0 * math.log(2.0) * float(np.mean(exps))
+
+
+def _feedforward_poles(feedforward, plant):
+    """None (no feedforward), or the filter poles (an empty array for a static feedforward)."""
+    if feedforward is None:
+        return None
+    if plant.B1.shape[1] != 1:
+        raise ValueError(f"feedforward: the plant must have one disturbance input, but has "
+                         f"{plant.B1.shape[1]}")
+    if isinstance(feedforward, str):
+        as_choice("feedforward", feedforward, ("static",))
+        return np.zeros(0)
+    p = as_vector("feedforward", feedforward)
+    if np.any(p <= 0):
+        raise ValueError(f"feedforward: the filter poles must be positive (rad/s), but found {p.tolist()}")
+    return np.sort(p)
+
+
 def _unpack(theta, structure, shape, scale):
     m, n = shape
     if structure == "static":
@@ -239,8 +286,8 @@ def _pack(c, structure, corner, scale):
 
 
 def tune_controller(plant, disturbances, horizons, starts, *, structure: str = "static",
-                    hinf_cap: float | None = None, corner: float = 1.0, maxiter: int = 2000,
-                    name: str = "") -> TuneResult:
+                    feedforward=None, hinf_cap: float | None = None, corner: float = 1.0,
+                    maxiter: int = 2000, rounds: int = 6, name: str = "") -> TuneResult:
     """A fixed controller of least mean log energy on training disturbances (module docstring).
 
     Parameters
@@ -253,13 +300,24 @@ def tune_controller(plant, disturbances, horizons, starts, *, structure: str = "
     starts : sequence of gain or Controller
         Where the search starts (gains for ``"static"``; gains or filtered controllers for
         ``"filtered"``, a gain K starting as K_low = K_high = K with the corner ``corner``).
-    structure : {"static", "filtered"}, optional
+    structure : {"static", "filtered", "held"}, optional
+        The feedback part (from x); ``"held"`` keeps the one start's feedback part as it is and
+        tunes the feedforward only.
+    feedforward : None, "static" or sequence of float, optional
+        What the controller reads of the disturbance estimate ŵ (one disturbance input): None
+        (default) nothing; ``"static"`` a gain ``F ŵ``; a sequence of poles p > 0 (rad/s) the
+        feedforward ``F ŵ + C_w ξ`` through first-order filters ``ξ̇_i = −p_i ξ_i + ŵ`` with the
+        poles fixed and every gain tuned (its gains are exact for each feedback part: see
+        Notes).
     hinf_cap : float, optional
         An upper bound on the loop's H∞ norm, kept as a penalty during the search.
     corner : float, optional
         ω_c (rad/s) of a filtered search started from a gain.
     maxiter : int, optional
-        Nelder–Mead iterations per start.
+        Nelder–Mead iterations per start (with a feedforward: per start and round).
+    rounds : int, optional
+        With a feedforward, the most rounds of (exact feedforward gains, Nelder–Mead on the
+        feedback part) per start.
     name : str, optional
         The tuned controller's label.
 
@@ -271,44 +329,84 @@ def tune_controller(plant, disturbances, horizons, starts, *, structure: str = "
     Raises
     ------
     ValueError
-        If the lists are empty or of different lengths, ``structure`` is unknown, a start does
-        not fit the structure, or a number is out of range.
+        If the lists are empty or of different lengths, a disturbance is zero, ``structure`` is
+        unknown, a start does not fit the structure, or a number is out of range.
+    UnstableError
+        If no start leads to a stabilizing controller (named ``starts``).
+    InfeasibleError
+        If ``hinf_cap`` is given and the best controller found exceeds it.
+
+    Notes
+    -----
+    Each training disturbance is scaled by a power of two before its energy is integrated and
+    the log energy shifted back, so the tuned controller does not depend on the disturbances'
+    units and the objective moves by exactly ``2 log a`` when every draw is scaled by a.
+
+    With a feedforward the energies are quadratic in its gains for a fixed feedback part; each
+    round sets them to the least mean log energy exactly (majorization–minimization on the
+    exact quadratics, :mod:`fdsc._feedforward_tuning`) and then searches the feedback part
+    with them held (Nelder–Mead), until a round gains less than 1e-9 or ``rounds`` run out.
+    The H∞ cap does not apply to it (the loop from d then includes the feedforward).
+
+    Examples
+    --------
+    A static feedforward on ŵ cancels a matched disturbance (ẋ = −x + d + u, z = [x; 0.1 u]):
+
+    >>> from fdsc import Plant
+    >>> p = Plant([[-1.0]], [[1.0]], [[1.0]], [[1.0], [0.0]], [[0.0], [0.0]], [[0.0], [0.1]])
+    >>> res = tune_controller(p, [Sinusoids([1.0], [0.5])], [200.0], [[[0.0]]], feedforward="static")
+    >>> round(float(res.controller.F[0, 0]), 2), res.controller.reads_estimate
+    (-0.99, True)
     """
     plant = as_plant(plant)
     structure = as_choice("structure", structure, STRUCTURES)
-    if isinstance(disturbances, Sinusoids | Piecewise) or not hasattr(disturbances, "__len__"):
-        raise TypeError("disturbances must be a sequence of Sinusoids or Piecewise")
-    if len(disturbances) == 0 or len(disturbances) != len(horizons):
-        raise ValueError(f"disturbances and horizons must be non-empty and of one length, but found "
-                         f"{len(disturbances)} and {len(horizons)}")
+    disturbances, horizons, shift = _training(disturbances, horizons)
     if not hasattr(starts, "__len__") or len(starts) == 0:
         raise ValueError("starts must hold at least one gain or controller")
     cap = None if hinf_cap is None else as_positive("hinf_cap", hinf_cap)
     corner = as_positive("corner", corner)
     maxiter = as_count("maxiter", maxiter, 1)
-    for k, (d, h) in enumerate(zip(disturbances, horizons, strict=True)):
-        check_type(f"disturbances[{k}]", d, Sinusoids | Piecewise, "an fdsc.Sinusoids or fdsc.Piecewise")
-        as_positive(f"horizons[{k}]", h)
+    rounds = as_count("rounds", rounds, 1)
+    poles = _feedforward_poles(feedforward, plant)
+    if structure == "held" and (poles is None or len(starts) != 1):
+        raise ValueError("structure 'held' needs a feedforward and exactly one start (the feedback part "
+                         "it holds)")
+    if poles is not None and cap is not None:
+        raise ValueError("hinf_cap applies to controllers that read x only (feedforward=None)")
     energies = _ClassEnergies(disturbances, horizons)
     starts = [as_controller(s, plant, f"starts[{k}]") for k, s in enumerate(starts)]
+    for k, s in enumerate(starts):
+        if s.reads_estimate:
+            raise ValueError(f"starts[{k}] reads ŵ: start from its feedback part (the feedforward gains "
+                             "are set exactly)")
     shape = (plant.n_controls, plant.n_states)
     scale = max(1.0, max(float(np.abs(s.D).max()) for s in starts))
+    if poles is not None:
+        from ._feedforward_tuning import tune_feedforward
+
+        ctrl, J, first, evals, hinf = tune_feedforward(plant, energies, shift, starts, structure, poles,
+                                                       corner, scale, maxiter, rounds, name, _pack, _unpack,
+                                                       UNSTABLE)
+        return TuneResult(ctrl, J, first, evals, hinf, None, structure)
     evals = 0
 
-    def f(theta):
+    def f(theta, refined=False):
         nonlocal evals
         evals += 1
         loop = _unpack(theta, structure, shape, scale).closed_loop(plant)
         if not np.all(np.isfinite(loop.A)) or np.max(np.linalg.eigvals(loop.A).real) >= 0:
             return UNSTABLE
         with np.errstate(all="ignore"):
-            J = float(np.mean(np.log(np.maximum(energies(loop), 1e-300))))
+            J = float(np.mean(np.log(energies(loop)))) + shift
         if not math.isfinite(J):
             return UNSTABLE
         if cap is not None:
-            from .frequency import sigma_max
+            from .bands import Band
+            from .frequency import band_peak, sigma_max
 
-            peak = float(sigma_max(loop, HINF_GRID).max())
+            # on a fixed grid while searching; refined (between grid points too) to polish
+            peak = (band_peak(loop, Band.entire()).gamma if refined
+                    else float(sigma_max(loop, HINF_GRID).max()))
             J += HINF_PENALTY * max(0.0, math.log(peak / cap))
         return J
 
@@ -324,7 +422,23 @@ def tune_controller(plant, disturbances, horizons, starts, *, structure: str = "
     from .frequency import band_peak
 
     ctrl = _unpack(best.x, structure, shape, scale)
+    if cap is not None and best.fun < UNSTABLE and ctrl.closed_loop(plant).is_hurwitz() \
+            and band_peak(ctrl.closed_loop(plant), Band.entire()).gamma > cap * (1.0 + CAP_RTOL):
+        # the grid missed a peak between its points: polish with the refined peak
+        best = minimize(lambda th: f(th, refined=True), best.x, method="Nelder-Mead",
+                        options={"maxiter": max(200, maxiter // 4), "xatol": 1e-8, "fatol": 1e-10,
+                                 "adaptive": True})
+        ctrl = _unpack(best.x, structure, shape, scale)
     ctrl = Controller(ctrl.A, ctrl.B, ctrl.C, ctrl.D, name=name)
     loop = ctrl.closed_loop(plant)
-    hinf = band_peak(loop, Band.entire()).gamma if loop.is_hurwitz() else math.inf
+    if best.fun >= UNSTABLE or not loop.is_hurwitz():
+        lam = loop.poles()
+        raise UnstableError(f"starts: no stabilizing controller found from the {len(starts)} start(s) (every "
+                            f"loop the search met is unstable; the best has an eigenvalue at "
+                            f"{complex(lam[-1]):.4g}): start from a stabilizing gain", complex(lam[-1]))
+    hinf = band_peak(loop, Band.entire()).gamma
+    if cap is not None and hinf > cap * (1.0 + CAP_RTOL):
+        raise InfeasibleError(f"hinf_cap: the search found no controller with ‖loop‖∞ ≤ {cap:.6g} (the best "
+                              f"it found has {hinf:.6g}); raise the cap or start from a controller that "
+                              "meets it", "cap not met")
     return TuneResult(ctrl, float(best.fun), tuple(first), evals, float(hinf), cap, structure)

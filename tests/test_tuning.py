@@ -109,3 +109,115 @@ def test_bad_input_is_refused_by_name(call, error, match):
     plant = Plant([[-1.0]], [[1.0]], [[1.0]], [[1.0], [0.0]], [[0.0], [0.0]], [[0.0], [0.5]])
     with pytest.raises(error, match=match):
         call(plant)
+
+
+# --- reliability: a tuned controller is never unstable, never unit-dependent, never above its cap
+
+_P1 = Plant([[-1.0]], [[1.0]], [[1.0]], [[1.0], [0.0]], [[0.0], [0.0]], [[0.0], [0.5]])
+_DS1 = [Sinusoids([1.0], [0.3]), Sinusoids([1.0], [2.0])]
+
+
+def test_a_search_that_finds_no_stabilizing_controller_raises_naming_starts():
+    from fdsc import UnstableError
+
+    with pytest.raises(UnstableError, match=r"starts: no stabilizing controller"):
+        tune_controller(_P1, _DS1, [40.0, 40.0], [[[10.0]]])     # 1 + 10 > 0: every start unstable
+
+
+@pytest.mark.parametrize("factor", [1e-160, 1e150])
+def test_the_tuned_gain_does_not_depend_on_the_disturbances_units(factor):
+    # energies near 1e-320 were clipped at 1e-300: the objective went flat and the search stopped
+    a = tune_controller(_P1, _DS1, [40.0, 40.0], [[[0.0]]])
+    b = tune_controller(_P1, [d.scaled(factor) for d in _DS1], [40.0, 40.0], [[[0.0]]])
+    assert b.objective - a.objective == pytest.approx(2 * math.log(factor), abs=1e-8)
+    np.testing.assert_allclose(b.controller.gain, a.controller.gain, rtol=1e-5)
+
+
+def test_an_unmeetable_hinf_cap_raises_instead_of_returning_a_controller_above_it():
+    from fdsc import InfeasibleError
+
+    # no gain makes ‖(s + 1 − k)⁻¹‖∞ with a 0.5 k u-penalty smaller than about 0.447
+    with pytest.raises(InfeasibleError, match=r"hinf_cap: the search found no controller"):
+        tune_controller(_P1, _DS1, [40.0, 40.0], [[[0.0]]], hinf_cap=0.01)
+
+
+def test_a_zero_training_disturbance_is_refused_by_name():
+    with pytest.raises(ValueError, match=r"disturbances\[1\] is zero"):
+        tune_controller(_P1, [_DS1[0], Sinusoids([0.0], [1.0])], [40.0, 40.0], [[[0.0]]])
+
+
+@pytest.mark.parametrize("x0, match", [([0.0, 1.0], r"x0: expected 1 entries"),
+                                       ([math.nan], r"x0 must have finite entries")])
+def test_loop_energy_refuses_a_bad_x0_by_name(x0, match):
+    loop = _P1.closed_loop([[-1.0]])
+    with pytest.raises(ValueError, match=match):
+        loop_energy(loop, _DS1[0], 10.0, x0=x0)
+
+
+# --- controllers that read x and ŵ: the feedforward's exact gains and the structures
+
+_P2 = Plant([[0.0, 1.0], [-4.0, -0.4]], [[0.0], [1.0]], [[0.0], [1.0]],
+            [[1.0, 0.0], [0.0, 0.0]], [[0.0], [0.0]], [[0.0], [0.3]])
+_DS2 = [D, Sinusoids([1.0, 0.5], [12.0, 0.4])]
+_HS2 = [22.0, 15.0]
+
+
+def test_the_feedforwards_energies_are_exact_quadratics_in_its_gains():
+    from fdsc._feedforward_tuning import Quadratic, with_feedforward
+
+    ce = _ClassEnergies(_DS2, _HS2)
+    fb = Controller.static([[-1.0, -1.5]])
+    poles = [0.5, 5.0]
+
+    def loop_of(g):
+        return with_feedforward(fb, poles, g).closed_loop(_P2)
+
+    quad = Quadratic(ce, loop_of, 3, step=[0.7, 2.0, 0.3])
+    for g in np.random.default_rng(0).normal(size=(4, 3)):
+        np.testing.assert_allclose(quad.energies(g), ce(loop_of(g)), rtol=1e-9)
+    # the majorization–minimization ends at a stationary point of the mean log energy
+    best = quad.minimize()
+
+    def J(g):
+        return float(np.mean(np.log(ce(loop_of(g)))))
+
+    for i in range(3):
+        for h in (1e-3, -1e-3):
+            step = np.zeros(3)
+            step[i] = h
+            assert J(best + step) >= J(best) - 1e-12
+
+
+def test_a_richer_feedforward_only_improves_and_reads_the_estimate():
+    static = tune_controller(_P2, _DS2, _HS2, [[[-1.0, -1.5]]], maxiter=300)
+    ff0 = tune_controller(_P2, _DS2, _HS2, [static.controller.D], feedforward="static", maxiter=300)
+    ff2 = tune_controller(_P2, _DS2, _HS2, [static.controller.D], feedforward=[0.5, 5.0], maxiter=300)
+    assert ff2.objective <= ff0.objective <= static.objective
+    assert ff0.controller.reads_estimate and ff0.controller.n_states == 0
+    assert ff2.controller.n_states == 2
+    np.testing.assert_allclose(np.sort(ff2.controller.poles().real), [-5.0, -0.5])
+
+
+def test_a_held_feedback_part_tunes_only_the_feedforward():
+    K = [[-1.0, -1.5]]
+    res = tune_controller(_P2, _DS2, _HS2, [K], structure="held", feedforward=[1.0])
+    np.testing.assert_array_equal(res.controller.D, K)
+    assert res.controller.reads_estimate
+
+
+@pytest.mark.parametrize("kw, match", [
+    ({"feedforward": [-1.0]}, r"feedforward: the filter poles must be positive"),
+    ({"feedforward": "dynamic"}, r"feedforward"),
+    ({"feedforward": "static", "hinf_cap": 2.0}, r"hinf_cap applies to controllers that read x only"),
+    ({"structure": "held"}, r"structure 'held' needs a feedforward"),
+])
+def test_bad_feedforward_settings_are_refused_by_name(kw, match):
+    with pytest.raises(ValueError, match=match):
+        tune_controller(_P2, _DS2, _HS2, [[[-1.0, -1.5]]], **kw)
+
+
+def test_a_start_that_reads_the_estimate_is_refused():
+    start = Controller(np.zeros((0, 0)), np.zeros((0, 2)), np.zeros((1, 0)), [[-1.0, -1.5]],
+                       E=np.zeros((0, 1)), F=[[0.5]])
+    with pytest.raises(ValueError, match=r"starts\[0\] reads ŵ"):
+        tune_controller(_P2, _DS2, _HS2, [start], feedforward="static")
