@@ -28,15 +28,18 @@ _EXPORTS = {
     "weighted": ("WeightedDesign", "DynamicFront", "band_weight", "weighted_hinf", "dynamic_front"),
     "h2": ("shaping_filter", "fit_shaping_filter", "h2_controller"),
     "tuning": ("TuneResult", "loop_energy", "tune_controller"),
+    "noncausal": ("LQData", "NoncausalLimit", "lq_data", "noncausal_limit", "tone_limit"),
+    "predictive": ("PredictiveLaw", "PredictiveRun", "ToneEstimate", "identify_tones"),
     "design": ("FDSC",),
     "dwell": ("DwellCheck", "DwellTimeBound", "LyapunovDwell", "PeriodicDwellMargin",
               "check_dwell_bound", "dwell_time_bound", "lyapunov_dwell", "periodic_dwell_margin",
               "random_dwell_signal", "switched_states"),
     "energy": ("PowerSplit", "average_power", "fdeef", "fdeef_autonomous", "fdeef_parseval_autonomous",
                "instantaneous_power", "steady_state_power"),
-    "exceptions": ("BandError", "DimensionError", "EnergyOverflowError", "FdscError", "InfeasibleError",
-                   "IterationLimitError", "MemoryLimitError", "SingularFrequencyError", "SolverError",
-                   "UnstableError", "UnstableRunWarning", "VerificationError"),
+    "exceptions": ("BandError", "DimensionError", "EnergyOverflowError", "EnergyUnderflowWarning",
+                   "FdscError", "InfeasibleError", "IterationLimitError", "MemoryLimitError",
+                   "SingularFrequencyError", "SolverError", "UnstableError", "UnstableRunWarning",
+                   "VerificationError"),
     "frequency": ("BandPeak", "band_peak", "freqresp", "sigma_max", "steady_state_gain", "steady_state_gains",
                   "steady_state_gains"),
     "lmi": ("GKYPResult", "gkyp_certify", "gkyp_gamma"),
@@ -130,6 +133,7 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers and editors
         BandError,
         DimensionError,
         EnergyOverflowError,
+        EnergyUnderflowWarning,
         FdscError,
         InfeasibleError,
         IterationLimitError,
@@ -160,7 +164,9 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers and editors
         pareto_front,
         synthesize_multiband,
     )
+    from .noncausal import LQData, NoncausalLimit, lq_data, noncausal_limit, tone_limit
     from .plant import LTISystem, Plant, as_plant, as_system
+    from .predictive import PredictiveLaw, PredictiveRun, ToneEstimate, identify_tones
     from .prepared import Prepared, shift_signal
     from .random_systems import random_hurwitz, random_plant, random_spd, random_system
     from .realization import band_filter, lqr_gain
@@ -202,6 +208,9 @@ __all__ = [
     "WeightedDesign", "DynamicFront", "band_weight", "weighted_hinf", "dynamic_front",
     "shaping_filter", "fit_shaping_filter", "h2_controller", "TuneResult", "loop_energy",
     "tune_controller",
+    # what any controller can do on a draw, and a law that predicts the disturbance
+    "LQData", "lq_data", "NoncausalLimit", "noncausal_limit", "tone_limit", "ToneEstimate",
+    "identify_tones", "PredictiveRun", "PredictiveLaw",
     # a switching law on the disturbance estimate
     "Supervisor", "Prepared", "SupervisedRun", "supervise", "LAWS", "band_filter", "lqr_gain",
     "shift_signal", "DwellCertificate", "geromel_colaneri_dwell", "MinSwitchingCertificate",
@@ -229,5 +238,5 @@ __all__ = [
     # exceptions
     "FdscError", "BandError", "DimensionError", "SolverError", "InfeasibleError",
     "VerificationError", "IterationLimitError", "UnstableError", "SingularFrequencyError",
-    "MemoryLimitError", "EnergyOverflowError", "UnstableRunWarning",
+    "MemoryLimitError", "EnergyOverflowError", "EnergyUnderflowWarning", "UnstableRunWarning",
 ]

@@ -1,0 +1,400 @@
+"""The non-causal limit: the least output energy any controller can reach on one disturbance.
+
+A controller that knew the whole disturbance d on [0, H] in advance could do no better than the
+finite-horizon LQ optimum with a known exogenous input::
+
+    J* = min_u ∫₀ᴴ ‖C x + D1 d + D2 u‖² dt,     ẋ = A x + B1 d + B2 u,  x(0) = x0,
+
+so no causal controller — fixed, switched, adaptive or predictive, on whatever measurements —
+reaches less on that draw: J* is a **bound**, not a reference. It needs u penalized in z
+(R = D2ᵀD2 > 0). With u = −R⁻¹D2ᵀ(C x + D1 d) + v the cost splits into
+``‖Π(C x + D1 d)‖² + vᵀR v`` (Π = I − D2 R⁻¹ D2ᵀ), and the optimum is
+
+    v* = −R⁻¹ B2ᵀ (P x + ξ),      ẋ = A_c x − S ξ + B̃1 d,      ξ̇ = −A_cᵀ ξ − F d,
+
+with P the stabilizing solution of the Riccati equation of (Ã, B2, CᵀΠC, R), A_c = Ã − S P
+Hurwitz, S = B2 R⁻¹ B2ᵀ, F = P B̃1 + CᵀΠD1, Ã = A − B2R⁻¹D2ᵀC, B̃1 = B1 − B2R⁻¹D2ᵀD1. The
+adjoint ξ is the anti-causal filter of the future disturbance; the end condition
+``P x(H) + ξ(H) = 0`` is met exactly by superposition (the end value c = ξ(H) solves
+``(I − P G_H) c = −P x⁰(H)``, G_H the finite-horizon Gramian of (A_c, S)). ξ is integrated
+backward and x forward, each along its stable direction, piece by piece of d in closed form
+(:mod:`fdsc._modal`): exact between the breaks of d, no step, whatever the horizon.
+
+For any control u, ``J(u) − J* = ∫ ‖v − v*(t, x)‖²_R dt``: the best causal law is the LQ gain
+plus the best prediction of ξ from the past, and it beats a fixed controller only by
+predicting the future disturbance better than a linear filter can.
+
+:func:`tone_limit` is the same bound per frequency for a long single tone: the squared distance
+of ``G_zd(jω)`` from the range of ``G_zu(jω)``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ._modal import Modal, tone_terms
+from ._validation import as_positive, as_vector, check_type
+from .exceptions import EnergyOverflowError
+from .plant import as_plant
+from .signals import Piecewise, Sinusoids
+
+__all__ = ["LQData", "lq_data", "NoncausalLimit", "noncausal_limit", "tone_limit"]
+
+
+@dataclass(frozen=True)
+class LQData:
+    """The LQ quantities of a plant for the cost ``∫ ‖C x + D1 d + D2 u‖²`` (:func:`lq_data`).
+
+    Parameters
+    ----------
+    P : (n, n) ndarray
+        The stabilizing solution of the Riccati equation.
+    K : (m_u, n) ndarray
+        The LQ gain: ``u = K x + K_d d − R⁻¹B2ᵀ ξ`` is the optimum (K = −R⁻¹(D2ᵀC + B2ᵀP)).
+    K_d : (m_u, n_d) ndarray
+        The direct term of d, ``−R⁻¹D2ᵀD1`` (0 when D1 = 0).
+    A_c : (n, n) ndarray
+        The closed loop ``A + B2 K`` (Hurwitz).
+    R_inv_B2T : (m_u, n) ndarray
+        ``R⁻¹B2ᵀ``: how the adjoint ξ enters u.
+    F : (n, n_d) ndarray
+        How d drives the adjoint: ``ξ̇ = −A_cᵀξ − F d``.
+    S : (n, n) ndarray
+        ``B2 R⁻¹ B2ᵀ``.
+    B1t : (n, n_d) ndarray
+        ``B̃1 = B1 − B2R⁻¹D2ᵀD1``.
+    Cz, Dz_xi, Dz_d : ndarray
+        ``z = Cz x + Dz_xi ξ + Dz_d d`` along the optimum.
+    """
+
+    P: np.ndarray
+    K: np.ndarray
+    K_d: np.ndarray
+    A_c: np.ndarray
+    R_inv_B2T: np.ndarray
+    F: np.ndarray
+    S: np.ndarray
+    B1t: np.ndarray
+    Cz: np.ndarray
+    Dz_xi: np.ndarray
+    Dz_d: np.ndarray
+
+    def psi_gain(self, omega: ArrayLike) -> np.ndarray:
+        """``−(jω I + A_cᵀ)⁻¹ F`` per frequency: the adjoint of a tone continued forever,
+        ``ξ(t) = Re(ψ(ω) c e^{jωt})`` for ``d(t) = Re(c e^{jωt})`` (n, n_d) per ω.
+
+        Parameters
+        ----------
+        omega : (N,) array_like
+            rad/s, any sign.
+
+        Returns
+        -------
+        (N, n, n_d) complex ndarray
+        """
+        w = np.atleast_1d(np.asarray(omega, dtype=float))
+        n = self.A_c.shape[0]
+        M = 1j * w[:, None, None] * np.eye(n)[None] + self.A_c.T[None]
+        return -np.linalg.solve(M, np.broadcast_to(self.F, (w.size, *self.F.shape)))
+
+
+def lq_data(plant) -> LQData:
+    """The LQ optimum's quantities of a plant (module docstring).
+
+    Parameters
+    ----------
+    plant : Plant, control.StateSpace or tuple
+
+    Returns
+    -------
+    LQData
+
+    Raises
+    ------
+    ValueError
+        If D2 does not have full column rank (u is not penalized in z: the limit is not
+        finite), or the Riccati equation has no stabilizing solution.
+
+    Examples
+    --------
+    >>> from fdsc import Plant
+    >>> lq = lq_data(Plant([[1.0]], [[1.0]], [[1.0]], [[1.0], [0.0]], [[0.0], [0.0]], [[0.0], [1.0]]))
+    >>> round(float(lq.K[0, 0]), 6), round(float(lq.A_c[0, 0]), 6)      # ẋ = x + u, ∫ x² + u²
+    (-2.414214, -1.414214)
+    """
+    from scipy.linalg import solve_continuous_are
+
+    plant = as_plant(plant)
+    A, B1, B2, C, D1, D2 = plant.A, plant.B1, plant.B2, plant.C, plant.D1, plant.D2
+    R = D2.T @ D2
+    s = np.linalg.svd(D2, compute_uv=False)
+    if s.size < D2.shape[1] or s.min() <= 1e-12 * max(1.0, s.max()):
+        raise ValueError("plant: D2 must have full column rank (every control penalized in z), so that "
+                         "the least energy is finite; add a penalty ρ u to z")
+    Ri = np.linalg.inv(R)
+    G = Ri @ D2.T                                      # R⁻¹D2ᵀ
+    At = A - B2 @ G @ C
+    B1t = B1 - B2 @ G @ D1
+    Pi = np.eye(C.shape[0]) - D2 @ G
+    Q = C.T @ Pi @ C
+    Q = 0.5 * (Q + Q.T)
+    try:
+        P = solve_continuous_are(At, B2, Q, R)
+    except (np.linalg.LinAlgError, ValueError) as exc:
+        raise ValueError(f"plant: the LQ problem has no stabilizing solution ({exc})") from None
+    P = 0.5 * (P + P.T)
+    RiB = Ri @ B2.T
+    S = B2 @ RiB
+    A_c = At - S @ P
+    lam = np.linalg.eigvals(A_c)
+    if np.max(lam.real) >= 0:
+        raise ValueError(f"plant: the LQ closed loop is not Hurwitz (an eigenvalue at "
+                         f"{complex(lam[np.argmax(lam.real)]):.4g}): a mode the cost does not see")
+    N = C.T @ Pi @ D1
+    K = -(G @ C + RiB @ P)
+    return LQData(P, K, -G @ D1, A_c, RiB, P @ B1t + N, S, B1t, Pi @ C - D2 @ RiB @ P, -D2 @ RiB, Pi @ D1)
+
+
+def _pieces(d, horizon):
+    from ._blocks import pieces
+
+    return pieces(d, horizon)
+
+
+@dataclass(frozen=True)
+class NoncausalLimit:
+    """The least output energy on one disturbance (see :func:`noncausal_limit`).
+
+    Parameters
+    ----------
+    energy : float
+        J* = min ∫₀ᴴ ‖z‖² dt over every control knowing d on [0, H].
+    horizon : float
+    breaks : (P + 1,) ndarray
+        The pieces' bounds (the breaks of d and 0, H).
+    piece_energies : (P,) ndarray
+        J* split by piece.
+    lq : LQData
+    _x_terms, _xi_terms, _d_terms : tuple
+        Per piece, the closed-form terms of x, ξ and d (what :meth:`trajectory` evaluates).
+    """
+
+    energy: float
+    horizon: float
+    breaks: np.ndarray
+    piece_energies: np.ndarray
+    lq: LQData = field(repr=False)
+    _x_terms: tuple = field(repr=False, default=())
+    _xi_terms: tuple = field(repr=False, default=())
+    _d_terms: tuple = field(repr=False, default=())
+
+    def trajectory(self, t: ArrayLike) -> dict:
+        """The optimal trajectory at times t (closed forms, no simulation).
+
+        Parameters
+        ----------
+        t : (N,) array_like
+            Times in [0, horizon].
+
+        Returns
+        -------
+        dict
+            ``x`` (N, n), ``u`` (N, m_u), ``z`` (N, p), ``xi`` (N, n).
+        """
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+        if np.any((t < 0) | (t > self.horizon)):
+            raise ValueError(f"t must lie in [0, {self.horizon}]")
+        k = np.clip(np.searchsorted(self.breaks, t, side="right") - 1, 0, self.piece_energies.size - 1)
+        lq = self.lq
+        x = np.zeros((t.size, lq.A_c.shape[0]))
+        xi = np.zeros_like(x)
+        dd = np.zeros((t.size, lq.F.shape[1]))
+        for j in np.unique(k):
+            sel = k == j
+            L = self.breaks[j + 1] - self.breaks[j]
+            tau = t[sel] - self.breaks[j]
+            for out, terms in ((x, self._x_terms[j]), (xi, self._xi_terms[j]), (dd, self._d_terms[j])):
+                e, an, g = terms
+                if e.size:
+                    ex = np.exp(e[None, :] * (tau[:, None] - an[None, :] * L))
+                    out[sel] = (ex @ g).real
+        u = x @ lq.K.T + dd @ lq.K_d.T - xi @ lq.R_inv_B2T.T
+        z = x @ lq.Cz.T + xi @ lq.Dz_xi.T + dd @ lq.Dz_d.T
+        return {"x": x, "u": u, "z": z, "xi": xi}
+
+
+def noncausal_limit(plant, d, horizon: float, *, x0=None) -> NoncausalLimit:
+    """The least ∫₀ᴴ ‖z‖² any controller reaches on the disturbance d, knowing it in advance
+    (module docstring): a lower bound for every causal controller on this draw.
+
+    Parameters
+    ----------
+    plant : Plant, control.StateSpace or tuple
+        D2 of full column rank.
+    d : Sinusoids or Piecewise
+        The disturbance (one input per column of B1; sums of tones, piece by piece).
+    horizon : float
+        H > 0 (s).
+    x0 : (n,) array_like, optional
+        The plant's initial state (default rest).
+
+    Returns
+    -------
+    NoncausalLimit
+
+    Raises
+    ------
+    TypeError
+        If d is not a Sinusoids or Piecewise.
+    ValueError
+        If the plant has more than one disturbance input, D2 lacks full column rank, the LQ
+        problem has no stabilizing solution, ``horizon`` is not positive, or x0 has the wrong
+        size or non-finite entries.
+    EnergyOverflowError
+        If the energy exceeds the float range.
+
+    Examples
+    --------
+    A long single tone reaches the per-frequency bound :func:`tone_limit` (its mean power):
+
+    >>> from fdsc import Plant
+    >>> p = Plant([[-1.0]], [[1.0]], [[1.0]], [[1.0], [0.0]], [[0.0], [0.0]], [[0.0], [0.5]])
+    >>> lim = noncausal_limit(p, Sinusoids([1.0], [2.0]), 2000.0)
+    >>> round(float(lim.energy / 2000.0 / (0.5 * tone_limit(p, [2.0])[0])), 3)
+    1.0
+    """
+    plant = as_plant(plant)
+    check_type("d", d, Sinusoids | Piecewise, "an fdsc.Sinusoids or fdsc.Piecewise")
+    if plant.B1.shape[1] != 1:
+        raise ValueError(f"plant must have one disturbance input (d is a scalar signal), but has "
+                         f"{plant.B1.shape[1]}")
+    H = as_positive("horizon", horizon)
+    n = plant.n_states
+    x0 = np.zeros(n) if x0 is None else as_vector("x0", x0, n)
+    lq = lq_data(plant)
+    pcs = _pieces(d, H)
+    back = Modal(lq.A_c.T, np.eye(n), "the LQ closed loop")
+    fwd = Modal(lq.A_c, np.vstack([lq.Cz, np.eye(n)]), "the LQ closed loop")
+    xi_at_H = np.zeros(n)
+    for _attempt in range(2):                    # ξ(H) = 0, then the c that meets P x(H) + ξ(H) = 0
+        xi_terms = _backward(back, pcs, lq, xi_at_H)
+        energies, x_terms, d_terms, xH = _forward(fwd, pcs, lq, xi_terms, x0)
+        if _attempt == 0:
+            GH = _gramian_H(lq, H)
+            c = np.linalg.solve(np.eye(n) - lq.P @ GH, -lq.P @ xH)
+            if not np.all(np.isfinite(c)):
+                raise EnergyOverflowError("noncausal_limit: the end condition is not finite")
+            xi_at_H = c
+    J = float(np.sum(energies))
+    if not math.isfinite(J):
+        raise EnergyOverflowError("noncausal_limit: the energy exceeds the float range (about 1.8e308)")
+    breaks = np.array([p[0] for p in pcs] + [H])
+    return NoncausalLimit(J, H, breaks, np.asarray(energies), lq, tuple(x_terms), tuple(xi_terms),
+                          tuple(d_terms))
+
+
+def _gramian_H(lq, H):
+    """``∫₀ᴴ e^{A_c s} S e^{A_cᵀ s} ds = M − e^{A_c H} M e^{A_cᵀ H}`` with A_c M + M A_cᵀ + S = 0."""
+    from scipy.linalg import expm, solve_continuous_lyapunov
+
+    M = solve_continuous_lyapunov(lq.A_c, -lq.S)
+    slowest = float(np.min(np.abs(np.linalg.eigvals(lq.A_c).real)))
+    if H * slowest > 60.0:                      # e^{A_c H} below 1e-26 of M: nothing to subtract
+        return M
+    E = expm(lq.A_c * H)
+    return M - E @ M @ E.T
+
+
+def _backward(back, pcs, lq, xi_end):
+    """Per piece, the terms of ξ in forward time (exponent, anchor, coefficient (n,))."""
+    n = lq.A_c.shape[0]
+    out = [None] * len(pcs)
+    xi = np.asarray(xi_end, dtype=float)
+    for j in range(len(pcs) - 1, -1, -1):
+        t0, t1, w, a, ph = pcs[j]
+        L = t1 - t0
+        # reversed time τ' = t1 − t: dξ/dτ' = A_cᵀ ξ + F d(t1 − τ'), d(t1 − τ') a sum of tones
+        s, c = tone_terms(0.0, -w, a, w * t1 + ph)
+        b = c[:, None] * lq.F[:, 0][None, :]
+        e, an, g, xi0 = back.piece(xi, s, np.zeros(s.size, dtype=bool), b, np.zeros((s.size, n)), L)
+        # back to forward time τ = L − τ': e^{e (L − τ)}; tones keep anchor 0 (coefficient
+        # e^{eL}, unit modulus), modes (Re e < 0) become e^{−e (τ − L)} anchored at L
+        tone = np.abs(e.real) == 0
+        coef = np.where(tone[:, None], g * np.exp(np.where(tone, e, 0.0) * L)[:, None], g)
+        out[j] = (-e, ~tone, coef)
+        xi = xi0
+    return out
+
+
+def _forward(fwd, pcs, lq, xi_terms, x0):
+    n = lq.A_c.shape[0]
+    p = lq.Cz.shape[0]
+    x = np.asarray(x0, dtype=float)
+    energies, x_terms, d_terms = [], [], []
+    for j, (t0, t1, w, a, ph) in enumerate(pcs):
+        L = t1 - t0
+        sd, cd = tone_terms(t0, w, a, ph)
+        ex, ax, gx = xi_terms[j]
+        s = np.r_[sd, ex]
+        anchor = np.r_[np.zeros(sd.size, dtype=bool), ax]
+        b = np.vstack([cd[:, None] * lq.B1t[:, 0][None, :], -(gx @ lq.S.T)])
+        dz = np.vstack([cd[:, None] * lq.Dz_d[:, 0][None, :], gx @ lq.Dz_xi.T])
+        dout = np.hstack([dz, np.zeros((s.size, n))])
+        e, an, g, xL = fwd.piece(x, s, anchor, b, dout, L)
+        G = Modal.gram(e, an, g[:, :p], L)
+        energies.append(float(np.trace(G)))
+        x_terms.append((e, an, g[:, p:]))
+        d_terms.append((sd, np.zeros(sd.size, dtype=bool), cd[:, None]))
+        x = xL
+    return energies, x_terms, d_terms, x
+
+
+def tone_limit(plant, omega: ArrayLike) -> np.ndarray:
+    """The least ‖z‖²/|d|² per frequency: for ``d = Re(c e^{jωt})`` held forever, no control
+    makes the mean of ‖z‖² less than ``|c|²/2`` times this (the squared distance of
+    ``G_zd(jω)`` from the range of ``G_zu(jω)``).
+
+    Parameters
+    ----------
+    plant : Plant, control.StateSpace or tuple
+        One disturbance input; D2 of full column rank.
+    omega : (N,) array_like
+        Frequencies (rad/s), none on a pole of the plant.
+
+    Returns
+    -------
+    (N,) ndarray
+
+    Raises
+    ------
+    ValueError
+        As :func:`lq_data`, or if ω lies on a pole of the plant.
+
+    Examples
+    --------
+    >>> from fdsc import Plant
+    >>> p = Plant([[-1.0]], [[1.0]], [[1.0]], [[1.0], [0.0]], [[0.0], [0.0]], [[0.0], [0.5]])
+    >>> float(np.round(tone_limit(p, [0.0])[0], 6))     # min_u (1 + u)² + u²/4 = 0.2
+    0.2
+    """
+    plant = as_plant(plant)
+    if plant.B1.shape[1] != 1:
+        raise ValueError(f"plant must have one disturbance input, but has {plant.B1.shape[1]}")
+    lq_data(plant)
+    w = as_vector("omega", omega)
+    n = plant.n_states
+    out = np.empty(w.size)
+    for k, wk in enumerate(w):
+        M = 1j * wk * np.eye(n) - plant.A
+        if np.linalg.cond(M) > 1e14:
+            raise ValueError(f"omega[{k}] = {wk} lies on a pole of the plant")
+        G1 = plant.C @ np.linalg.solve(M, plant.B1) + plant.D1
+        G2 = plant.C @ np.linalg.solve(M, plant.B2) + plant.D2
+        U, _res, _rank, _sv = np.linalg.lstsq(G2, G1, rcond=None)
+        r = G1 - G2 @ U
+        out[k] = float(np.real(np.vdot(r, r)))
+    return out

@@ -1,0 +1,405 @@
+"""A causal law that predicts the disturbance: the LQ gain plus the adjoint of identified tones.
+
+The non-causal optimum (:mod:`fdsc.noncausal`) is ``u* = K x + K_d d − R⁻¹B2ᵀ ξ(t)`` with ξ
+the anti-causal filter of the future disturbance; a causal law can only predict ξ from the past
+of the estimate ŵ. For a disturbance that is a sum of tones held for a while, the prediction is
+exact once the tones are known: a tone ``Re(c e^{jωt})`` continued forever has the adjoint
+``Re(ψ(ω) c e^{jωt})`` with ``ψ(ω) = −(jω I + A_cᵀ)⁻¹ F`` (:meth:`fdsc.noncausal.LQData.psi_gain`).
+:class:`PredictiveLaw` applies
+
+    u = K x + K_d ŵ − R⁻¹B2ᵀ [ ψ(0) ŵ(t) + Σ_i (ψ(ω̂_i) − ψ(0)) ŷ_i(t) ],
+
+a static feedforward ψ(0) of the estimate (exact for slow tones, which need no identification:
+over the loop's memory they are nearly constant) corrected on the tones ŷ_i identified in the
+band where prediction matters. Every ``update`` seconds the law identifies the tones of the last
+``window`` seconds of ŵ, sampled at ``step``: ESPRIT (Roy and Kailath 1989) on the second
+differences of the samples (which suppress the slow part), the signal subspace of the lag
+covariance by an eigendecomposition with its rank set by ``rank_tol``, the frequencies from its
+shift invariance, then the amplitudes by least squares with a polynomial trend
+(:func:`identify_tones`). Between updates each identified tone is continued, so the feedforward
+is a sum of tones and the loop is run exactly (:mod:`fdsc._modal`), with no step.
+
+It is realizable: it reads x and samples of ŵ, nothing of the future. The sampler is ideal
+(tones of ŵ above the Nyquist frequency π/step are removed before sampling, as an anti-alias
+filter would). :meth:`PredictiveLaw.run_known` is the same law with the tones of the current
+piece of d known exactly (ideal identification, no break foreseen): a reference, not a bound.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._modal import Modal, tone_terms
+from ._validation import as_count, as_positive, check_type
+from .noncausal import lq_data
+from .plant import as_plant
+from .signals import Piecewise, Sinusoids
+
+__all__ = ["ToneEstimate", "identify_tones", "PredictiveRun", "PredictiveLaw"]
+
+#: Defaults of the identification (see :func:`identify_tones`).
+DEFAULT_LAGS, DEFAULT_RANK_TOL, DEFAULT_TREND = 48, 1e-3, 3
+
+
+@dataclass(frozen=True)
+class ToneEstimate:
+    """Tones identified in a window of samples (see :func:`identify_tones`).
+
+    Parameters
+    ----------
+    frequencies : (M,) ndarray
+        ω̂_i (rad/s), ascending.
+    coefficients : (M,) complex ndarray
+        c_i with the tones ``Σ Re(c_i e^{jω̂_i τ})``, τ = 0 at the window's last sample.
+    residual : float
+        Mean square of the fit's residual over the window (tones and trend).
+    """
+
+    frequencies: np.ndarray
+    coefficients: np.ndarray
+    residual: float
+
+    def __call__(self, tau) -> np.ndarray:
+        """The identified tones at times τ relative to the window's last sample.
+
+        Parameters
+        ----------
+        tau : (N,) array_like
+            Times (s), 0 at the window's last sample.
+
+        Returns
+        -------
+        (N,) ndarray
+        """
+        tau = np.atleast_1d(np.asarray(tau, dtype=float))
+        return np.real(np.exp(1j * np.outer(tau, self.frequencies)) @ self.coefficients)
+
+
+def _esprit(y, step, lo, hi, max_tones, lags, rank_tol):
+    """The frequencies in [lo, hi] of the tones in y (module docstring)."""
+    yd = np.diff(y, 2)
+    L = min(lags, yd.size // 2)
+    if L < 3:
+        return np.zeros(0)
+    H = np.lib.stride_tricks.sliding_window_view(yd, L)
+    ev, vec = np.linalg.eigh(H.T @ H)
+    ev, vec = ev[::-1], vec[:, ::-1]
+    if not ev[0] > 0:
+        return np.zeros(0)
+    r = int(min(2 * max_tones, np.sum(ev > rank_tol ** 2 * ev[0]), L - 1))
+    if r < 1:
+        return np.zeros(0)
+    V = vec[:, :r]
+    Phi = np.linalg.lstsq(V[:-1], V[1:], rcond=None)[0]
+    w = np.abs(np.angle(np.linalg.eigvals(Phi))) / step
+    w = np.sort(w[(w >= lo) & (w <= hi)])
+    if w.size:                           # the two roots of a real tone give one frequency
+        w = w[np.r_[True, np.diff(w) > 1e-6 * np.maximum(1.0, w[1:])]]
+    return w
+
+
+def _fit(tau, y, w, trend):
+    """Least-squares amplitudes of tones w with a polynomial trend; (c, residual)."""
+    s = tau / max(-float(tau[0]), 1e-300)
+    cols = [s ** k for k in range(trend + 1)]
+    cols += [f(wi * tau) for wi in w for f in (np.cos, np.sin)]
+    B = np.column_stack(cols)
+    coef, *_ = np.linalg.lstsq(B, y, rcond=None)
+    a, b = coef[trend + 1::2], coef[trend + 2::2]
+    res = y - B @ coef
+    return a - 1j * b, float(np.mean(res ** 2))
+
+
+def identify_tones(samples, step: float, band, *, max_tones: int = 12, lags: int = DEFAULT_LAGS,
+                   rank_tol: float = DEFAULT_RANK_TOL, trend: int = DEFAULT_TREND) -> ToneEstimate:
+    """The tones of a window of uniform samples in a band (ESPRIT on the second differences,
+    amplitudes by least squares with a polynomial trend).
+
+    Parameters
+    ----------
+    samples : (N,) array_like
+        Uniform samples, the last one at τ = 0.
+    step : float
+        The sampling interval (s).
+    band : (float, float)
+        The frequencies (rad/s) where tones are sought, ``0 < lo < hi ≤ π/step``.
+    max_tones : int, optional
+        At most this many tones (the signal subspace has at most twice as many dimensions).
+    lags : int, optional
+        Columns of the lag matrix (its row count is the rest of the window).
+    rank_tol : float, optional
+        Directions of the lag covariance whose singular value is below this fraction of the
+        largest are noise.
+    trend : int, optional
+        Degree of the polynomial fitted beside the tones (the slow part of the window).
+
+    Returns
+    -------
+    ToneEstimate
+
+    Raises
+    ------
+    ValueError
+        If an argument is out of range or the samples are not finite.
+
+    Examples
+    --------
+    Two tones and a slow drift, sampled at 5 ms for 2 s:
+
+    >>> t = np.arange(-400, 1) * 0.005
+    >>> y = 0.7 * np.sin(30.0 * t + 0.3) + 0.4 * np.sin(47.0 * t) + 0.5 * np.sin(0.4 * t)
+    >>> est = identify_tones(y, 0.005, (10.0, 200.0))
+    >>> np.round(est.frequencies, 3).tolist(), np.round(np.abs(est.coefficients), 3).tolist()
+    ([30.0, 47.0], [0.7, 0.4])
+    """
+    from ._validation import as_vector
+
+    y = as_vector("samples", samples)
+    step = as_positive("step", step)
+    lo, hi = _band(band, step)
+    max_tones = as_count("max_tones", max_tones, 1)
+    lags = as_count("lags", lags, 3)
+    rank_tol = as_positive("rank_tol", rank_tol)
+    trend = as_count("trend", trend, 0)
+    if y.size < 2 * (trend + 1) + 8:
+        raise ValueError(f"samples: at least {2 * (trend + 1) + 8} samples are needed, but found {y.size}")
+    w = _esprit(y, step, lo, hi, max_tones, lags, rank_tol)
+    tau = step * (np.arange(y.size) - (y.size - 1))
+    c, res = _fit(tau, y, w, trend)
+    return ToneEstimate(w, c, res)
+
+
+def _band(band, step=None):
+    if not hasattr(band, "__len__") or len(band) != 2:
+        raise ValueError(f"band must be a pair (lo, hi) of frequencies in rad/s, but found {band!r}")
+    lo, hi = as_positive("band[0]", band[0]), as_positive("band[1]", band[1])
+    if not lo < hi:
+        raise ValueError(f"band must have lo < hi, but found {band!r}")
+    if step is not None and hi > math.pi / step * (1 + 1e-12):
+        raise ValueError(f"band: its upper end {hi:g} rad/s is above the Nyquist frequency π/step = "
+                         f"{math.pi / step:g} rad/s")
+    return lo, hi
+
+
+@dataclass(frozen=True)
+class PredictiveRun:
+    """One run of a :class:`PredictiveLaw`.
+
+    Parameters
+    ----------
+    energy : float
+        ∫₀ᴴ ‖z‖² dt (exact given the law's decisions).
+    horizon : float
+    identifications : int
+        How many times the tones were identified.
+    mean_tones : float
+        Tones per identification, on average.
+    """
+
+    energy: float
+    horizon: float
+    identifications: int
+    mean_tones: float
+
+
+class PredictiveLaw:
+    """The LQ gain plus the adjoint of tones identified online in ŵ (module docstring).
+
+    Parameters
+    ----------
+    plant : Plant, control.StateSpace or tuple
+        One disturbance input; D2 of full column rank (:func:`fdsc.noncausal.lq_data`).
+    band : (float, float)
+        Where tones are identified (rad/s); the rest of ŵ gets the static feedforward ψ(0).
+    window : float, optional
+        Seconds of ŵ each identification reads.
+    update : float, optional
+        Seconds between identifications (the first after ``min(window, 0.5)`` s).
+    step : float, optional
+        The sampling interval of ŵ (default π / (1.25 · band[1])).
+    max_tones, lags, rank_tol, trend : optional
+        See :func:`identify_tones`.
+    amplitude_cap : float, optional
+        An identification whose tones are larger than this times the window's largest sample
+        is discarded (a fit across a break of d can return canceling tones): only the static
+        feedforward acts until the next one.
+
+    Raises
+    ------
+    ValueError
+        If an argument is out of range, or as :func:`fdsc.noncausal.lq_data`.
+
+    Examples
+    --------
+    On a held pair of tones the law comes within 2 % of the non-causal limit (the first
+    identification waits half a second):
+
+    >>> from fdsc import Plant, noncausal_limit
+    >>> p = Plant([[0.0, 1.0], [-4.0, -0.4]], [[0.0], [1.0]], [[0.0], [1.0]],
+    ...           [[1.0, 0.0], [0.0, 0.0]], [[0.0], [0.0]], [[0.0], [0.3]])
+    >>> d = Sinusoids([1.0, 0.5], [3.0, 7.0])
+    >>> run = PredictiveLaw(p, (1.0, 20.0), window=3.0, step=0.05).run(d, 100.0)
+    >>> bool(run.energy / noncausal_limit(p, d, 100.0).energy < 1.02)
+    True
+    """
+
+    def __init__(self, plant, band, *, window: float = 2.0, update: float = 0.5, step: float | None = None,
+                 max_tones: int = 12, lags: int = DEFAULT_LAGS, rank_tol: float = DEFAULT_RANK_TOL,
+                 trend: int = DEFAULT_TREND, amplitude_cap: float = 4.0):
+        self.plant = as_plant(plant)
+        if self.plant.B1.shape[1] != 1:
+            raise ValueError(f"plant must have one disturbance input, but has {self.plant.B1.shape[1]}")
+        lo, hi = _band(band)
+        self.band = (lo, hi)
+        self.window = as_positive("window", window)
+        self.update = as_positive("update", update)
+        self.step = math.pi / (1.25 * hi) if step is None else as_positive("step", step)
+        _band(band, self.step)
+        if self.window < 20 * self.step:
+            raise ValueError(f"window must hold at least 20 samples ({20 * self.step:.4g} s at step "
+                             f"{self.step:.4g} s), but found {window!r}")
+        self.max_tones = as_count("max_tones", max_tones, 1)
+        self.lags = as_count("lags", lags, 3)
+        self.rank_tol = as_positive("rank_tol", rank_tol)
+        self.trend = as_count("trend", trend, 0)
+        self.amplitude_cap = as_positive("amplitude_cap", amplitude_cap)
+        self.lq = lq = lq_data(self.plant)
+        self._psi0 = lq.psi_gain([0.0])[0, :, 0]
+        self._static = lq.K_d[:, 0] - lq.R_inv_B2T @ self._psi0        # u per unit of ŵ
+        self._modal = Modal(lq.A_c, lq.Cz, "the LQ closed loop")
+
+    def _ff_gain(self, w):
+        """u per unit of an identified tone at ω (its correction over the static part)."""
+        return -(self.lq.psi_gain(w)[:, :, 0] - self._psi0[None, :]) @ self.lq.R_inv_B2T.T
+
+    def _run(self, d, horizon, estimate, x0, known):
+        from ._blocks import pieces
+
+        check_type("d", d, Sinusoids | Piecewise, "an fdsc.Sinusoids or fdsc.Piecewise")
+        H = as_positive("horizon", horizon)
+        what = d if estimate is None else estimate
+        if estimate is not None:
+            check_type("estimate", estimate, Sinusoids | Piecewise, "an fdsc.Sinusoids or fdsc.Piecewise")
+        plant, n = self.plant, self.plant.n_states
+        from ._validation import as_vector
+
+        x = np.zeros(n) if x0 is None else np.array(as_vector("x0", x0, n))
+        pd, pw = pieces(d, H), pieces(what, H)
+        nyq = math.pi / self.step
+        sampled = _lowpass(what, nyq)
+        first = min(self.window, 0.5)
+        k0, k1 = math.ceil(first / self.update - 1e-9), math.floor(H / self.update - 1e-9)
+        ups = np.arange(k0, k1 + 1) * self.update
+        ups = ups[ups < H]
+        edges = np.union1d(np.r_[0.0, ups, H], [p[0] for p in pd] + [p[0] for p in pw])
+        edges = edges[np.r_[True, np.diff(edges) > 1e-9 * max(1.0, H)]]
+        edges[-1] = H
+        upset = set(np.round(ups / self.update).astype(np.int64).tolist())
+        lo_d = np.array([p[0] for p in pd])
+        lo_w = np.array([p[0] for p in pw])
+        model = None                        # (time, ω, c, u per unit)
+        energy, n_id, n_tones = 0.0, 0, 0
+        B1, B2, D1, D2 = plant.B1[:, 0], plant.B2, plant.D1[:, 0], plant.D2
+        for t0, t1 in zip(edges[:-1], edges[1:], strict=True):
+            k = round(t0 / self.update)
+            if abs(t0 - k * self.update) < 1e-9 * max(1.0, H) and k in upset:
+                if known:
+                    _a, _b, w, a, ph = pd[int(np.searchsorted(lo_d, t0 + 1e-12, side="right") - 1)]
+                    sel = (w >= self.band[0]) & (w <= self.band[1])
+                    c = a[sel] * np.exp(1j * (w[sel] * t0 + ph[sel])) / 1j
+                    model = (t0, w[sel], c, self._ff_gain(w[sel])) if sel.any() else None
+                else:
+                    model = self._identify(sampled, t0)
+                n_id += 1
+                n_tones += 0 if model is None else model[1].size
+            L = t1 - t0
+            jd = int(np.searchsorted(lo_d, t0 + 1e-12, side="right") - 1)
+            jw = int(np.searchsorted(lo_w, t0 + 1e-12, side="right") - 1)
+            sd, cd = tone_terms(t0, *pd[jd][2:])
+            sw, cw = tone_terms(t0, *pw[jw][2:])
+            vw = cw[:, None] * self._static[None, :]
+            s = [sd, sw]
+            b = [cd[:, None] * B1[None, :], vw @ B2.T]
+            dz = [cd[:, None] * D1[None, :], vw @ D2.T]
+            if model is not None:
+                tm, w, c, g = model
+                cc = c * np.exp(1j * w * (t0 - tm)) / 2
+                vm = np.vstack([cc[:, None] * g, (cc.conj())[:, None] * g.conj()])
+                s.append(np.r_[1j * w, -1j * w])
+                b.append(vm @ B2.T)
+                dz.append(vm @ D2.T)
+            s = np.concatenate(s)
+            e, an, gz, x = self._modal.piece(x, s, np.zeros(s.size, dtype=bool), np.vstack(b),
+                                             np.vstack(dz), L)
+            energy += float(np.trace(Modal.gram(e, an, gz, L)))
+        return PredictiveRun(energy, H, n_id, n_tones / n_id if n_id else 0.0)
+
+    def _identify(self, sampled, t):
+        """The model at time t from the last window of samples (None if none is usable)."""
+        W = min(self.window, t)
+        k = int(math.floor(W / self.step + 1e-9))
+        if k < 2 * (self.trend + 1) + 8:
+            return None
+        tt = t - self.step * np.arange(k, -1, -1)
+        y = sampled(tt)
+        w = _esprit(y, self.step, self.band[0], self.band[1], self.max_tones, self.lags, self.rank_tol)
+        if not w.size:
+            return None
+        c, _res = _fit(tt - t, y, w, self.trend)
+        if np.max(np.abs(c)) > self.amplitude_cap * max(float(np.max(np.abs(y))), 1e-300):
+            return None
+        return (t, w, c, self._ff_gain(w))
+
+    def run(self, d, horizon: float, *, estimate=None, x0=None) -> PredictiveRun:
+        """The law on the disturbance d, reading the estimate (default ŵ = d).
+
+        Parameters
+        ----------
+        d : Sinusoids or Piecewise
+            The disturbance.
+        horizon : float
+            H > 0 (s).
+        estimate : Sinusoids or Piecewise, optional
+            What the law reads as ŵ (d with measurement noise, say); default d.
+        x0 : (n,) array_like, optional
+
+        Returns
+        -------
+        PredictiveRun
+
+        Raises
+        ------
+        TypeError
+            If d or estimate is not a Sinusoids or Piecewise.
+        ValueError
+            If horizon or x0 is out of range.
+        """
+        return self._run(d, horizon, estimate, x0, known=False)
+
+    def run_known(self, d, horizon: float, *, x0=None) -> PredictiveRun:
+        """The same law with the tones of d's current piece in the band known exactly at every
+        update (ideal identification; no break of d is foreseen): a reference for what the
+        identification costs, not a realizable law.
+
+        Parameters
+        ----------
+        d : Sinusoids or Piecewise
+        horizon : float
+        x0 : (n,) array_like, optional
+
+        Returns
+        -------
+        PredictiveRun
+        """
+        return self._run(d, horizon, None, x0, known=True)
+
+
+def _lowpass(d, nyquist):
+    """d without its tones above ``nyquist`` (an ideal anti-alias filter before the sampler)."""
+    if isinstance(d, Sinusoids):
+        keep = d.frequencies < nyquist
+        return Sinusoids(d.amplitudes[keep], d.frequencies[keep], d.phases[keep])
+    return Piecewise(d.breaks, [_lowpass(p, nyquist) for p in d.parts])

@@ -1,0 +1,111 @@
+"""fdsc.predictive: the tone identification against known tones, the predictive law against the
+non-causal limit (a bound it never passes, and a reference it reaches on held tones), its
+static part against the fixed LTI loop it equals, and bad input by name."""
+
+import math
+
+import numpy as np
+import pytest
+
+from fdsc import (
+    Controller,
+    Piecewise,
+    Plant,
+    PredictiveLaw,
+    Sinusoids,
+    identify_tones,
+    loop_energy,
+    lq_data,
+    noncausal_limit,
+)
+
+P2 = Plant([[0.0, 1.0], [-4.0, -0.4]], [[0.0], [1.0]], [[0.0], [1.0]],
+           [[1.0, 0.0], [0.0, 0.0]], [[0.0], [0.0]], [[0.0], [0.3]])
+BAND = (1.5, 20.0)
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_held_tones_are_identified_to_many_digits_beside_a_slow_drift(seed):
+    rng = np.random.default_rng(seed)
+    w = np.sort(rng.uniform(12.0, 180.0, 3))
+    a = rng.uniform(0.5, 1.5, 3)
+    ph = rng.uniform(0.0, 2 * np.pi, 3)
+    t = np.arange(-400, 1) * 0.005
+    y = np.sin(np.outer(t, w) + ph) @ a + 0.8 * np.sin(0.3 * t + 1.0)
+    est = identify_tones(y, 0.005, (8.0, 250.0))
+    np.testing.assert_allclose(est.frequencies, w, rtol=1e-5)
+    # the coefficients at τ = 0: a_j sin(φ_j) = Re(c_j e^{0})·… , |c_j| = a_j
+    np.testing.assert_allclose(np.abs(est.coefficients), a, rtol=1e-4)
+    np.testing.assert_allclose(est(t), np.sin(np.outer(t, w) + ph) @ a, atol=2e-4)
+
+
+def test_noise_alone_identifies_no_tone_above_the_rank_tolerance():
+    # a quiet window: the lag covariance has no direction above the tolerance
+    est = identify_tones(np.zeros(300), 0.01, (5.0, 100.0))
+    assert est.frequencies.size == 0
+
+
+def test_the_law_with_the_tones_known_reaches_the_limit_on_held_tones():
+    d = Sinusoids([1.0, 0.5, 0.7], [0.2, 3.0, 7.0], [0.1, 0.5, 2.0])
+    law = PredictiveLaw(P2, BAND, window=3.0, step=0.05)
+    lim = noncausal_limit(P2, d, 300.0).energy
+    assert law.run_known(d, 300.0).energy / lim == pytest.approx(1.0, abs=5e-3)
+    assert law.run(d, 300.0).energy / lim == pytest.approx(1.0, abs=1e-2)
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_no_run_of_the_law_passes_the_non_causal_limit(seed):
+    rng = np.random.default_rng(seed)
+    parts = [Sinusoids(rng.uniform(0.3, 1.2, 3), np.r_[rng.uniform(0.1, 1.0), rng.uniform(2.0, 15.0, 2)],
+                       rng.uniform(0, 2 * np.pi, 3)) for _ in range(3)]
+    d = Piecewise([0.0, 20.0, 45.0, 80.0], parts)
+    law = PredictiveLaw(P2, BAND, window=3.0, step=0.05)
+    lim = noncausal_limit(P2, d, 80.0).energy
+    for run in (law.run(d, 80.0), law.run_known(d, 80.0)):
+        assert run.energy >= lim * (1 - 1e-10)
+
+
+def test_without_tones_in_its_band_the_law_is_the_fixed_loop_of_its_static_part():
+    # every tone below the band: no identification succeeds, u = K x + (K_d − R⁻¹B2ᵀψ(0)) ŵ
+    d = Sinusoids([1.0, 0.6], [0.2, 0.5], [0.0, 1.0])
+    law = PredictiveLaw(P2, (5.0, 20.0), window=3.0, step=0.05)
+    lq = lq_data(P2)
+    F = lq.K_d - lq.R_inv_B2T @ lq.psi_gain([0.0])[0]
+    fixed = Controller(np.zeros((0, 0)), np.zeros((0, 2)), np.zeros((1, 0)), lq.K, E=np.zeros((0, 1)), F=F)
+    run = law.run(d, 120.0)
+    assert run.mean_tones == 0.0
+    assert run.energy == pytest.approx(loop_energy(fixed.closed_loop(P2), d, 120.0), rel=1e-9)
+
+
+def test_a_noisy_estimate_costs_energy_and_the_known_tones_do_not_read_it():
+    d = Sinusoids([1.0, 0.7], [0.3, 6.0])
+    noise = Sinusoids([0.05, 0.05], [9.0, 14.0])
+    law = PredictiveLaw(P2, BAND, window=3.0, step=0.05)
+    exact, noisy = law.run(d, 100.0), law.run(d, 100.0, estimate=d + noise)
+    assert noisy.energy > exact.energy
+
+
+@pytest.mark.parametrize("kw, match", [
+    ({"band": (20.0, 5.0)}, r"band must have lo < hi"),
+    ({"band": (1.0, 100.0), "step": 0.05}, r"above the Nyquist frequency"),
+    ({"band": 5.0}, r"band must be a pair"),
+    ({"window": 0.1, "step": 0.05}, r"window must hold at least 20 samples"),
+    ({"update": 0.0}, r"update"),
+    ({"max_tones": 0}, r"max_tones"),
+])
+def test_bad_settings_are_refused_by_name(kw, match):
+    args = {"band": BAND, "step": 0.05} | kw
+    with pytest.raises(ValueError, match=match):
+        PredictiveLaw(P2, **args)
+
+
+def test_bad_runs_and_samples_are_refused_by_name():
+    law = PredictiveLaw(P2, BAND, window=3.0, step=0.05)
+    with pytest.raises(TypeError, match=r"estimate must be an fdsc.Sinusoids"):
+        law.run(Sinusoids([1.0], [1.0]), 10.0, estimate=np.ones(3))
+    with pytest.raises(ValueError, match=r"x0: expected 2 entries"):
+        law.run(Sinusoids([1.0], [1.0]), 10.0, x0=[0.0])
+    with pytest.raises(ValueError, match=r"samples must have finite entries"):
+        identify_tones([0.0] * 20 + [math.nan], 0.01, (5.0, 100.0))
+    with pytest.raises(ValueError, match=r"samples: at least"):
+        identify_tones(np.ones(5), 0.01, (5.0, 100.0))
