@@ -7,11 +7,15 @@ exact once the tones are known: a tone ``Re(c e^{jωt})`` continued forever has 
 ``Re(ψ(ω) c e^{jωt})`` with ``ψ(ω) = −(jω I + A_cᵀ)⁻¹ F`` (:meth:`fdsc.noncausal.LQData.psi_gain`).
 :class:`PredictiveLaw` applies
 
-    u = K x + K_d ŵ − R⁻¹B2ᵀ [ ψ(0) ŵ(t) + Σ_i (ψ(ω̂_i) − ψ(0)) ŷ_i(t) ],
+    u = K x + F_b(ŵ) + Σ_i (g*(ω̂_i) − F_b(jω̂_i)) ŷ_i(t),      g*(ω) = K_d − R⁻¹B2ᵀψ(ω),
 
-a static feedforward ψ(0) of the estimate (exact for slow tones, which need no identification:
-over the loop's memory they are nearly constant) corrected on the tones ŷ_i identified in the
-band where prediction matters. Every ``update`` seconds the law identifies the tones of the last
+a fixed feedforward F_b of the estimate (the *base*: by default the static ``K_d − R⁻¹B2ᵀψ(0)``,
+exact for slow tones, which over the loop's memory are nearly constant; or any linear filter of
+ŵ, such as the best one for the class) corrected on the tones ŷ_i identified in the band where
+prediction matters, so that on those tones the feedforward is the optimal one. An identification
+whose fit leaves more than ``max_residual`` of the window's power unexplained (a window across a
+break of d, or noise that no few tones describe) is not used: the base acts alone until the next
+one. Every ``update`` seconds the law identifies the tones of the last
 ``window`` seconds of ŵ, sampled at ``step``: ESPRIT (Roy and Kailath 1989) on the second
 differences of the samples (which suppress the slow part), the signal subspace of the lag
 covariance by an eigendecomposition with its rank set by ``rank_tol``, the frequencies from its
@@ -224,8 +228,15 @@ class PredictiveLaw:
         See :func:`identify_tones`.
     amplitude_cap : float, optional
         An identification whose tones are larger than this times the window's largest sample
-        is discarded (a fit across a break of d can return canceling tones): only the static
-        feedforward acts until the next one.
+        is discarded (a fit across a break of d can return canceling tones).
+    max_residual : float, optional
+        An identification whose fit leaves more than this share of the window's mean square
+        unexplained is discarded (the base feedforward acts alone until the next one).
+    base : Controller, optional
+        The fixed feedforward the law corrects: its path from ŵ to u (``A, E, C, F``; its
+        states must not read x, ``B = 0``), e.g. a controller tuned with the LQ gain held
+        (:func:`fdsc.tune_controller` with ``structure="held"``). Default the static
+        ``K_d − R⁻¹B2ᵀψ(0)``. The law's gain on x is the LQ gain in either case.
 
     Raises
     ------
@@ -248,7 +259,8 @@ class PredictiveLaw:
 
     def __init__(self, plant, band, *, window: float = 2.0, update: float = 0.5, step: float | None = None,
                  max_tones: int = 12, lags: int = DEFAULT_LAGS, rank_tol: float = DEFAULT_RANK_TOL,
-                 trend: int = DEFAULT_TREND, amplitude_cap: float = 4.0):
+                 trend: int = DEFAULT_TREND, amplitude_cap: float = 4.0, max_residual: float = 1.0,
+                 base=None):
         self.plant = as_plant(plant)
         if self.plant.B1.shape[1] != 1:
             raise ValueError(f"plant must have one disturbance input, but has {self.plant.B1.shape[1]}")
@@ -266,14 +278,42 @@ class PredictiveLaw:
         self.rank_tol = as_positive("rank_tol", rank_tol)
         self.trend = as_count("trend", trend, 0)
         self.amplitude_cap = as_positive("amplitude_cap", amplitude_cap)
+        self.max_residual = as_positive("max_residual", max_residual)
         self.lq = lq = lq_data(self.plant)
-        self._psi0 = lq.psi_gain([0.0])[0, :, 0]
-        self._static = lq.K_d[:, 0] - lq.R_inv_B2T @ self._psi0        # u per unit of ŵ
-        self._modal = Modal(lq.A_c, lq.Cz, "the LQ closed loop")
+        m = self.plant.n_controls
+        if base is None:
+            psi0 = lq.psi_gain([0.0])[0, :, 0]
+            Af, Ef, Cf, Ff = np.zeros((0, 0)), np.zeros((0, 1)), np.zeros((m, 0)), \
+                (lq.K_d[:, 0] - lq.R_inv_B2T @ psi0)[:, None]
+        else:
+            from .controller import Controller
+
+            check_type("base", base, Controller, "an fdsc.Controller that reads ŵ")
+            if not base.reads_estimate or base.D.shape != (m, self.plant.n_states) or np.any(base.B):
+                raise ValueError("base must be a controller of this plant that reads ŵ, its states driven by "
+                                 "ŵ alone (B = 0)")
+            if base.n_states and np.max(np.linalg.eigvals(base.A).real) >= 0:
+                raise ValueError("base: its filter of ŵ is not stable")
+            Af, Ef, Cf, Ff = base.A, base.E, base.C, base.F
+        self._base = (Af, Ef[:, 0], Cf, Ff[:, 0])
+        k, n = Af.shape[0], self.plant.n_states
+        B2, D2 = self.plant.B2, self.plant.D2
+        A = np.block([[lq.A_c, B2 @ Cf], [np.zeros((k, n)), Af]])
+        C = np.hstack([lq.Cz, D2 @ Cf])
+        self._modal = Modal(A, C, "the LQ closed loop with the base feedforward")
 
     def _ff_gain(self, w):
-        """u per unit of an identified tone at ω (its correction over the static part)."""
-        return -(self.lq.psi_gain(w)[:, :, 0] - self._psi0[None, :]) @ self.lq.R_inv_B2T.T
+        """u per unit of an identified tone at ω: the optimal response less the base's."""
+        Af, Ef, Cf, Ff = self._base
+        lq = self.lq
+        opt = lq.K_d[:, 0][None, :] - lq.psi_gain(w)[:, :, 0] @ lq.R_inv_B2T.T
+        if Af.shape[0]:
+            M = 1j * np.asarray(w)[:, None, None] * np.eye(Af.shape[0])[None] - Af[None]
+            base = Ff[None, :] + np.einsum("mk,wk->wm", Cf, np.linalg.solve(M, np.broadcast_to(
+                Ef, (len(w), Ef.size))[..., None])[..., 0])
+        else:
+            base = np.broadcast_to(Ff, (len(w), Ff.size))
+        return opt - base
 
     def _run(self, d, horizon, estimate, x0, known):
         from ._blocks import pieces
@@ -287,6 +327,9 @@ class PredictiveLaw:
         from ._validation import as_vector
 
         x = np.zeros(n) if x0 is None else np.array(as_vector("x0", x0, n))
+        Af, Ef, Cf, Ff = self._base
+        x = np.r_[x, np.zeros(Af.shape[0])]                  # the base filter's states start at rest
+        zk = np.zeros(Af.shape[0])
         pd, pw = pieces(d, H), pieces(what, H)
         nyq = math.pi / self.step
         sampled = _lowpass(what, nyq)
@@ -320,16 +363,17 @@ class PredictiveLaw:
             jw = int(np.searchsorted(lo_w, t0 + 1e-12, side="right") - 1)
             sd, cd = tone_terms(t0, *pd[jd][2:])
             sw, cw = tone_terms(t0, *pw[jw][2:])
-            vw = cw[:, None] * self._static[None, :]
+            vw = cw[:, None] * Ff[None, :]
             s = [sd, sw]
-            b = [cd[:, None] * B1[None, :], vw @ B2.T]
+            b = [np.c_[cd[:, None] * B1[None, :], np.zeros((sd.size, zk.size))],
+                 np.c_[vw @ B2.T, cw[:, None] * Ef[None, :]]]
             dz = [cd[:, None] * D1[None, :], vw @ D2.T]
             if model is not None:
                 tm, w, c, g = model
                 cc = c * np.exp(1j * w * (t0 - tm)) / 2
                 vm = np.vstack([cc[:, None] * g, (cc.conj())[:, None] * g.conj()])
                 s.append(np.r_[1j * w, -1j * w])
-                b.append(vm @ B2.T)
+                b.append(np.c_[vm @ B2.T, np.zeros((vm.shape[0], zk.size))])
                 dz.append(vm @ D2.T)
             s = np.concatenate(s)
             e, an, gz, x = self._modal.piece(x, s, np.zeros(s.size, dtype=bool), np.vstack(b),
@@ -348,8 +392,10 @@ class PredictiveLaw:
         w = _esprit(y, self.step, self.band[0], self.band[1], self.max_tones, self.lags, self.rank_tol)
         if not w.size:
             return None
-        c, _res = _fit(tt - t, y, w, self.trend)
+        c, res = _fit(tt - t, y, w, self.trend)
         if np.max(np.abs(c)) > self.amplitude_cap * max(float(np.max(np.abs(y))), 1e-300):
+            return None
+        if res > self.max_residual * float(np.mean(y ** 2)):
             return None
         return (t, w, c, self._ff_gain(w))
 

@@ -62,13 +62,28 @@ class Draw:
         return int(sum(a != b for a, b in zip(self.dominant[:-1], self.dominant[1:], strict=True)))
 
 
-def draw(example, rng: np.random.Generator) -> Draw:
+def draw(example, rng: np.random.Generator, *, length_scale: float = 1.0, alpha=(0.8, 1.0),
+         noise_share: float = NOISE_SHARE, noise_tones: int = NOISE_TONES) -> Draw:
     """One seeded non-stationary disturbance of the module docstring's distribution.
+
+    Six to ten segments of 20 s plus an exponential time of mean 80 s (both times
+    ``length_scale``), each LF- or HF-dominated with even odds, its dominating band carrying a
+    share α of its power drawn uniformly in ``alpha``; a segment is three tones per band, or
+    with probability ``noise_share`` band-limited noise (``noise_tones`` tones per band with
+    Rayleigh amplitudes and random phases).
 
     Parameters
     ----------
     example : Example
     rng : numpy.random.Generator
+    length_scale : float, optional
+        The segments' lengths times this (the class's variants: 4× shorter or longer).
+    alpha : (float, float), optional
+        The range of the dominating band's share of the power.
+    noise_share : float, optional
+        The probability that a segment is band-limited noise.
+    noise_tones : int, optional
+        Tones per band of a noise segment.
 
     Returns
     -------
@@ -81,16 +96,16 @@ def draw(example, rng: np.random.Generator) -> Draw:
     (True, [1.0, 1.0])
     """
     k = int(rng.integers(6, 11))
-    lengths = np.round((20.0 + rng.exponential(80.0, k)) * 100.0) / 100.0
+    lengths = np.round(length_scale * (20.0 + rng.exponential(80.0, k)) * 100.0) / 100.0
     parts, dom, noise = [], [], []
     for _ in range(k):
         lf = bool(rng.random() < 0.5)
-        alpha = rng.uniform(0.8, 1.0)
-        is_noise = bool(rng.random() < NOISE_SHARE)
-        m = NOISE_TONES if is_noise else 3
+        share_dom = rng.uniform(alpha[0], alpha[1])
+        is_noise = bool(rng.random() < noise_share)
+        m = noise_tones if is_noise else 3
         sums = []
-        for (lo, hi), share in ((example.lf_tones, alpha if lf else 1 - alpha),
-                                (example.hf_tones, 1 - alpha if lf else alpha)):
+        for (lo, hi), share in ((example.lf_tones, share_dom if lf else 1 - share_dom),
+                                (example.hf_tones, 1 - share_dom if lf else share_dom)):
             w = np.exp(rng.uniform(np.log(lo), np.log(hi), m))
             a = rng.rayleigh(1.0, m) if is_noise else rng.uniform(0.5, 1.5, m)
             a = a * np.sqrt(share / (0.5 * np.sum(a**2)))

@@ -116,6 +116,8 @@ def full_study(n: int = N_FULL, *, seed: int = SEED, executor=None, out=None) ->
             "fixed_controllers": {k: {"family": fs.family[k], **fs.info[k], "train_score": fs.train_score[k],
                                       "matrices": _controller_record(fs.controllers[k])} for k in fs.names},
             "pairs": {f: [_controller_record(c) for c in pair] for f, pair in fs.pairs.items()},
+            "fixed_in_advance_x": fs.chosen_x,
+            "ladder": ladder_study(example, fs, st, seed, executor),
         }
     result["robustness"] = robustness(result, n=min(N_ROBUST, n - n // 2), executor=executor)
     result["measured"] = measured_robustness(result, n=min(N_ROBUST, n - n // 2), executor=executor)
@@ -123,6 +125,61 @@ def full_study(n: int = N_FULL, *, seed: int = SEED, executor=None, out=None) ->
         Path(out).parent.mkdir(parents=True, exist_ok=True)
         Path(out).write_text(json.dumps(result, indent=1))
     return result
+
+
+def ladder_study(example: str, fs: FixedSet, st, seed: int, executor=None) -> dict:
+    """The ladder of one example on the study's test draws (chapter 'ladder'): the settings
+    chosen on training draws, per test draw the energy of every rung and its ratio to the best
+    fixed controller (x, ŵ), their summary, and the realizable rungs on a noisy estimate.
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+    fs : FixedSet
+    st : Study
+        The study of the same draws (:func:`choose`): the gain-switching law and FDSC per draw.
+    seed : int
+    executor : optional
+
+    Returns
+    -------
+    dict
+    """
+    from fdsc.paper.pays.ladder import (
+        N_CHOOSE,
+        choose_settings,
+        direct_dwell,
+        ladder_draw,
+        ladder_noisy,
+        summarize,
+    )
+
+    settings = choose_settings(example, fs, seed, n=min(N_CHOOSE, len(st.train)), executor=executor)
+    idx = [r["index"] for r in st.test]
+    rows = map_draws(ladder_draw, [(example, i, seed, fs, settings) for i in idx], executor)
+    ref = np.array([r["best fixed (x, ŵ)"] for r in rows])
+    energies = {k: [r[k] for r in rows] for k in rows[0] if k != "index"}
+    ratios = {k: (np.asarray(v) / ref).tolist() for k, v in energies.items()}
+    ratios["gain switching"] = [r["runs"][st.law][0] / r["fixed"][fs.chosen] for r in st.test]
+    ratios["FDSC"] = [r["fdsc"]["FDSC"][0] / r["fixed"][fs.chosen] for r in st.test]
+    m = min(N_ROBUST, len(idx))
+    noisy = {}
+    _sup, tau = direct_dwell(example, fs, st.law)
+    for snr in ROBUST_SNR_DB:
+        res = map_draws(ladder_noisy, [(example, i, seed, fs, settings, float(snr), st.law, tau)
+                                       for i in idx[:m]], executor)
+        noisy[str(float(snr))] = {k: [r[k] for r in res] for k in res[0]}
+    noisy["direct_dwell"] = tau
+    from fdsc.paper.pays.ladder_variants import N_TEST_VARIANT, N_TUNE_VARIANT, variant_study
+
+    small = len(idx) < N_TEST_VARIANT                 # a study smaller than the full one: variants too
+
+    return {"settings": settings, "test_indices": idx, "energies": energies, "ratios": ratios,
+            "summary": summarize(ratios), "noisy": noisy, "noisy_draws": m,
+            "exact_on_noisy_draws": {k: ratios[k][:m] for k in ("predictive", "scheduled")},
+            "variants": variant_study(example, fs, settings, seed, executor,
+                                      n_tune=min(N_TUNE_VARIANT, len(idx)) if small else N_TUNE_VARIANT,
+                                      n_test=min(N_TEST_VARIANT, len(idx)))}
 
 
 def _stored_example(full, example) -> dict:
@@ -189,10 +246,12 @@ def stored_fixed_set(full: dict, example: str) -> FixedSet:
     pairs = {f: tuple(ctrl(m, f"{f} for {t} segments") for m, t in zip(p, ("LF", "HF"), strict=True))
              for f, p in r["pairs"].items()}
     ctrls = {k: ctrl(v["matrices"], k) for k, v in fc.items()}
+    x_only = [k for k in names if not ctrls[k].reads_estimate]
+    chosen_x = min(x_only, key=lambda k: (fc[k]["train_score"], names.index(k)))
     return FixedSet(example, full["n"], full["seed"], 0, names, ctrls,
                     {k: v["family"] for k, v in fc.items()}, info,
                     {k: v["train_score"] for k, v in fc.items()}, r["fixed_in_advance"], [], {}, pairs,
-                    {}, {}, None)
+                    {}, {}, None, chosen_x)
 
 
 def _stored_law(full, example):

@@ -20,10 +20,17 @@ training, the second for scoring. The fixed controllers, all from the library's 
   (:func:`fdsc.h2_controller`);
 * the **tuned controllers**: least mean log energy over the tuning draws
   (:func:`fdsc.tune_controller`), a static gain and a filtered one (n filter states), each
-  also with its H∞ norm capped at :data:`CAP_FACTOR` times the least H∞ norm of a state feedback.
+  also with its H∞ norm capped at :data:`CAP_FACTOR` times the least H∞ norm of a state feedback;
+* the **tuned controllers that read ŵ** (:func:`ff_poles`), the information every law on the
+  disturbance estimate has: the tuned gain or filtered controller with a static feedforward of
+  ŵ, or with a feedforward through first-order filters of ŵ of fixed poles, tuned the same way;
+  and the LQR gain with the widest of these feedforwards (``LQR + ŵ filter``, the predictive
+  law's base).
 
 The **fixed controller chosen in advance** is the one of least mean log energy over the training
-half among all of them. For the **value of switching**, the same designs are made for each type of
+half among all of them (the best fixed controller with the information of the laws: x and ŵ);
+the best among those that read x alone is kept beside it (:attr:`FixedSet.chosen_x`). For the
+**value of switching**, the same designs are made for each type of
 segment (LF- and HF-dominated pieces of the tuning draws, each run from rest): the clairvoyant
 switching reference switches between the two at the breaks (chapter 'disturbance_law').
 """
@@ -42,8 +49,9 @@ from fdsc.paper.shared.cache import cached
 from fdsc.paper.shared.comparators import comparators
 
 __all__ = ["N_TUNE", "CAP_FACTOR", "FRONT_POINTS", "DYN_RATIOS", "U_PENALTY", "TUNE_MAXITER",
-           "RECORD_MAXITER", "FAMILIES", "FixedSet", "fixed_set", "tuning_draws", "static_front",
-           "law_front_gains"]
+           "RECORD_MAXITER", "FF_MAXITER", "FF_ROUNDS", "RECORD_ROUNDS", "FAMILIES", "FixedSet", "fixed_set",
+           "tuning_draws", "static_front",
+           "law_front_gains", "ff_poles"]
 
 #: Tuning draws (the first training draws) the tuned designs and the shaping filters see.
 N_TUNE = 30
@@ -60,7 +68,34 @@ TUNE_MAXITER, RECORD_MAXITER = 1500, 250
 #: Iterations per start of the front's search and of its dominance check.
 FRONT_MAXITER, CHECK_MAXITER = 200, 300
 #: The families, in the order the book lists them.
-FAMILIES = ("comparator set", "static front", "LQR", "dynamic front", "H2", "tuned")
+FAMILIES = ("comparator set", "static front", "LQR", "dynamic front", "H2", "tuned", "tuned (x, ŵ)")
+#: Nelder–Mead iterations per round of the feedforward designs (a round also sets the feedforward
+#: gains exactly; the rounds end when one gains less than 1e-9).
+FF_MAXITER = 300
+#: Rounds of the feedforward designs: the full study's, and the record's subset's.
+FF_ROUNDS, RECORD_ROUNDS = 6, 2
+
+
+def ff_poles(example: str) -> dict:
+    """The feedforwards of the tuned controllers that read ŵ: ``{name: (feedback structure,
+    feedforward)}`` — a static feedforward, eight first-order filters with poles from 0.03 to
+    30 rad/s, and ten from 0.03 rad/s to the top of the class's HF tones (the band where the
+    disturbance's phase matters most).
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+
+    Returns
+    -------
+    dict
+    """
+    top = float(_example(example).hf_tones[1])
+    return {"tuned + ŵ": ("static", "static"),
+            "tuned filtered + ŵ": ("filtered", "static"),
+            "tuned filtered + ŵ filter": ("filtered", tuple(np.geomspace(0.03, 30.0, 8))),
+            "tuned filtered + wide ŵ filter": ("filtered", tuple(np.geomspace(0.03, top, 10)))}
+
 
 
 @dataclass(frozen=True)
@@ -100,6 +135,8 @@ class FixedSet:
         ``{name: fdsc.TuneResult}``.
     shaping : fdsc.LTISystem
         The class's shaping filter.
+    chosen_x : str
+        The best fixed controller that reads x alone (least training score among them).
     """
 
     example: str
@@ -118,6 +155,7 @@ class FixedSet:
     pair_scores: dict
     tuning: dict = field(repr=False)
     shaping: fdsc.LTISystem = field(repr=False)
+    chosen_x: str = ""
 
     def ranking(self) -> list:
         """The names by training score, best first."""
@@ -318,8 +356,29 @@ def fixed_set(example: str, n: int, seed: int) -> FixedSet:
                      structure="filtered", corner=edge[0], **kw)
         tuning[fres.controller.name] = fres
         add(fres.controller.name, fres.controller, "tuned")
+    # the same, reading ŵ too: the information every law on the disturbance estimate has
+    ff_iter = min(maxiter, FF_MAXITER)
+    ff_rounds = FF_ROUNDS if len(tune) >= N_TUNE else RECORD_ROUNDS
+    for label, (structure, ff) in ff_poles(example).items():
+        start = ctrls["tuned"].D if structure == "static" else ctrls["tuned filtered"]
+        res = fdsc.tune_controller(plant, [p for p, _L in whole], [L for _p, L in whole], [start],
+                                   structure=structure, feedforward=ff, maxiter=ff_iter, rounds=ff_rounds,
+                                   name=label)
+        tuning[label] = res
+        add(label, res.controller, "tuned (x, ŵ)")
+    # the LQR gain with the widest of these feedforwards tuned for the class (the predictive law's base)
+    wide = ff_poles(example)["tuned filtered + wide ŵ filter"][1]
+    res = fdsc.tune_controller(plant, [p for p, _L in whole], [L for _p, L in whole], [K_lqr],
+                               structure="held", feedforward=wide, name="LQR + ŵ filter")
+    tuning["LQR + ŵ filter"] = res
+    add("LQR + ŵ filter", res.controller, "tuned (x, ŵ)")
     # the pairs for the value of switching: each design made for one type of segment
     pairs, pair_scores = {}, {}
+    pairs["LQR + ŵ filter"] = tuple(
+        fdsc.tune_controller(plant, [p for p, _L in by_type[typ] or by_type["HF" if typ == "LF" else "LF"]],
+                             [L for _p, L in by_type[typ] or by_type["HF" if typ == "LF" else "LF"]], [K_lqr],
+                             structure="held", feedforward=wide,
+                             name=f"LQR + ŵ filter for {typ} segments").controller for typ in ("LF", "HF"))
     for fam_name in ("tuned", "tuned filtered", "H2 (x)", "H2 (x, ŵ)"):
         pair = []
         for typ in ("LF", "HF"):
@@ -354,8 +413,10 @@ def fixed_set(example: str, n: int, seed: int) -> FixedSet:
     for fam_name, pair in pairs.items():
         pair_scores[fam_name] = [float(np.mean(np.log(energies(c.closed_loop(plant))))) for c in pair]
     chosen = min(names, key=lambda k: (score[k], names.index(k)))
+    chosen_x = min((k for k in names if not ctrls[k].reads_estimate),
+                   key=lambda k: (score[k], names.index(k)))
     return FixedSet(example, n, seed, len(tune), tuple(names), ctrls, fam, info, score, chosen, checks,
-                    _design_checks(ex), pairs, pair_scores, tuning, shaping)
+                    _design_checks(ex), pairs, pair_scores, tuning, shaping, chosen_x)
 
 
 def _slowest_ok(fs: FixedSet, name: str) -> bool:

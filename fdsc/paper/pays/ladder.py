@@ -1,0 +1,356 @@
+"""Chapter 'ladder': what can any controller do on the class? From the non-causal limit down to the
+paper's law, every rung with the information of the laws (x and the estimate ŵ) where it reads
+the disturbance, each scored against the best fixed controller with that information.
+
+The rungs, per test draw of the non-stationary class (:mod:`fdsc.paper.pays.disturbance_law_draws`):
+
+* the **non-causal limit** (:func:`fdsc.noncausal_limit`): the least energy any controller reaches
+  knowing the whole draw in advance — a bound;
+* the **predictive law** (:class:`fdsc.PredictiveLaw`): the LQ gain with the class's best
+  feedforward filter of ŵ for it (``LQR + ŵ filter``), corrected to the adjoint of the tones it
+  identifies in the last seconds of ŵ — realizable; its window and its test of a fit chosen on
+  training draws (:data:`PREDICTIVE_GRID`);
+* the same law with the current segment's tones **known** (ideal identification, no break
+  foreseen) — a reference;
+* the **band-scheduled feedforward**: the LQ gain with a feedforward filter of ŵ designed for
+  each type of segment, switched at the true breaks (a reference) or by the band-power law on ŵ
+  (realizable, its forgetting and hysteresis chosen on training draws);
+* the **best fixed controller with the information of the laws** (x and ŵ), chosen in advance
+  among every fixed controller (:func:`fdsc.paper.pays.fixed_designs.fixed_set`), and the best
+  one that reads x alone;
+* the gain-switching laws of chapter 'disturbance_law' and the paper's FDSC (from the same draws).
+
+Every energy is exact between the breaks of the draw (no step). The ratio of each rung to the
+best fixed controller (x, ŵ) is summarized by its median with a bootstrap 95 % interval, its win
+rate, and, for the causal laws, the share of the headroom (in log) between the best fixed
+controller and the limit that it takes.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+import fdsc
+from fdsc.paper.pays.disturbance_law_draws import (
+    DECIDE_EVERY,
+    HYSTERESES,
+    LAMBDAS,
+    RESTART,
+    SEED,
+    _example,
+    seeded_draw,
+)
+from fdsc.paper.pays.fixed_designs import FixedSet
+
+__all__ = ["PREDICTIVE_GRID", "N_CHOOSE", "BOOT", "law_band", "predictive_law", "scheduled",
+           "choose_settings", "ladder_draw", "ladder_noisy", "direct_dwell", "summarize", "bootstrap_median",
+           "RUNGS", "RUNG_WORDS", "MAX_TONES"]
+
+#: The predictive law's settings tried on the training draws: seconds of ŵ per identification
+#: and the largest share of the window's power its fit may leave unexplained; and the most tones
+#: it identifies (fixed).
+PREDICTIVE_GRID = {"window": (1.0, 2.0, 4.0), "max_residual": (0.03, 0.3)}
+MAX_TONES = 12
+#: Training draws the settings are chosen on (the first ones).
+N_CHOOSE = 16
+#: Bootstrap resamples of the medians' intervals, and their seed.
+BOOT, BOOT_SEED = 2000, 7
+#: The rungs in the order of the ladder (top: the limit), with what each reads.
+RUNGS = ("limit", "known tones", "predictive", "scheduled at breaks", "scheduled", "best fixed (x, ŵ)",
+         "best fixed (x)", "gain switching", "FDSC")
+#: Each rung in words (the glossary defines them).
+RUNG_WORDS = {
+    "limit": "non-causal limit (knows the whole draw)",
+    "known tones": "LQ + adjoint of the current tones, known",
+    "predictive": "predictive law (tones identified in ŵ)",
+    "scheduled at breaks": "LQ + feedforward per segment type, switched at the breaks",
+    "scheduled": "LQ + feedforward per segment type, switched on ŵ",
+    "best fixed (x, ŵ)": "best fixed controller reading x and ŵ",
+    "best fixed (x)": "best fixed controller reading x alone",
+    "gain switching": "best law switching controllers on ŵ",
+    "FDSC": "the paper's FDSC",
+}
+#: The causal rungs whose share of the headroom is reported.
+REALIZABLE = ("predictive", "scheduled", "gain switching", "FDSC")
+
+
+def law_band(example: str) -> tuple:
+    """``((lo, hi), step)``: where the predictive law identifies tones — from the geometric mean
+    of the bands' edges to 1.2 times the top of the class's HF tones — and its sampling step
+    π/(2.5 hi).
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+
+    Returns
+    -------
+    tuple
+    """
+    ex = _example(example)
+    lo = math.sqrt(ex.bands["LF"].upper * ex.bands["HF"].lower)
+    hi = 1.2 * float(ex.hf_tones[1])
+    return (lo, hi), math.pi / (2.5 * hi)
+
+
+def predictive_law(example: str, fs: FixedSet, window: float, max_residual: float) -> fdsc.PredictiveLaw:
+    """The predictive law of an example at one setting, its base the class's ``LQR + ŵ filter``.
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+    fs : FixedSet
+    window, max_residual : float
+
+    Returns
+    -------
+    fdsc.PredictiveLaw
+    """
+    band, step = law_band(example)
+    return fdsc.PredictiveLaw(_example(example).plant, band, window=window, max_tones=MAX_TONES, step=step,
+                              update=0.5, max_residual=max_residual, base=fs.controllers["LQR + ŵ filter"])
+
+
+def scheduled(example: str, fs: FixedSet, decided: bool = True) -> fdsc.Supervisor:
+    """The band-scheduled feedforward: the LQ gain with the feedforward designed for LF- and for
+    HF-dominated segments (``fs.pairs["LQR + ŵ filter"]``), in the direct realization (only the
+    feedforward switches); decided by the band-power law on ŵ, or held per segment.
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+    fs : FixedSet
+    decided : bool, optional
+
+    Returns
+    -------
+    fdsc.Supervisor
+    """
+    ex = _example(example)
+    bands = [ex.bands["LF"], ex.bands["HF"]] if decided else None
+    return fdsc.Supervisor(ex.plant, list(fs.pairs["LQR + ŵ filter"]),
+                           law="band_power" if decided else "cost", bands=bands, decide_every=DECIDE_EVERY,
+                           restart=RESTART)
+
+
+def _segment_choice(prep, dr):
+    from fdsc.paper.pays.disturbance_law_runs import segment_choice
+
+    return segment_choice(prep, dr)
+
+
+def _setting_score(example, fs, window, max_residual, index, seed):
+    """log of the predictive law's energy on training draw ``index`` at one setting."""
+    dr = seeded_draw(example, index, seed)[1]
+    return math.log(predictive_law(example, fs, window, max_residual).run(dr.d, dr.horizon).energy)
+
+
+def choose_settings(example: str, fs: FixedSet, seed: int = SEED, n: int = N_CHOOSE, executor=None) -> dict:
+    """The predictive law's setting and the scheduled law's forgetting and hysteresis of least
+    mean log energy on the first ``n`` training draws.
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+    fs : FixedSet
+    seed : int, optional
+    n : int, optional
+    executor : optional
+        Where the runs go (:func:`fdsc.paper.pays.disturbance_law_full.map_draws`).
+
+    Returns
+    -------
+    dict
+        ``{"window", "max_residual", "max_tones", "forgetting", "hysteresis", "scores"}``.
+    """
+    from fdsc.paper.pays.disturbance_law_full import map_draws
+
+    n = min(n, fs.n // 2)
+    draws = [seeded_draw(example, i, seed)[1] for i in range(n)]
+    grid = [(w, m) for w in PREDICTIVE_GRID["window"] for m in PREDICTIVE_GRID["max_residual"]]
+    logs = map_draws(_setting_score, [(example, fs, w, m, i, seed) for w, m in grid for i in range(n)],
+                     executor)
+    scores = {k: float(np.mean(logs[j * n:(j + 1) * n])) for j, k in enumerate(grid)}
+    w, m = min(scores, key=lambda k: (scores[k], k))
+    sup = scheduled(example, fs)
+    sched = {}
+    for dr in draws:
+        prep = sup.prepare(dr.d, dr.horizon)
+        for lam in LAMBDAS:
+            for h in HYSTERESES:
+                sched.setdefault((lam, h), []).append(
+                    math.log(prep.run(forgetting=lam, hysteresis=h).energy))
+    lam, h = min(sched, key=lambda k: (float(np.mean(sched[k])), k))
+    return {"window": float(w), "max_residual": float(m), "max_tones": MAX_TONES, "forgetting": float(lam),
+            "hysteresis": float(h), "scores": {f"{k[0]:g}/{k[1]:g}": v for k, v in scores.items()}}
+
+
+def ladder_draw(example: str, index: int, seed: int, fs: FixedSet, settings: dict) -> dict:
+    """The energies of the ladder's computed rungs on draw ``index``.
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+    index : int
+    seed : int
+    fs : FixedSet
+    settings : dict
+        :func:`choose_settings`.
+
+    Returns
+    -------
+    dict
+        ``{rung: energy}`` for the limit, the predictive law (and its tones known), the
+        scheduled feedforward (at the breaks and decided), the best fixed controllers (x, ŵ)
+        and (x); ``index``.
+    """
+    ex, dr = seeded_draw(example, index, seed)
+    law = predictive_law(example, fs, settings["window"], settings["max_residual"])
+    sup = scheduled(example, fs)
+    prep = sup.prepare(dr.d, dr.horizon)
+    return {"index": index,
+            "limit": fdsc.noncausal_limit(ex.plant, dr.d, dr.horizon).energy,
+            "known tones": law.run_known(dr.d, dr.horizon).energy,
+            "predictive": law.run(dr.d, dr.horizon).energy,
+            "scheduled at breaks": prep.segment_law(_segment_choice(prep, dr)),
+            "scheduled": prep.run(forgetting=settings["forgetting"],
+                                  hysteresis=settings["hysteresis"]).energy,
+            "best fixed (x, ŵ)": prep.energy_of(fs.controllers[fs.chosen]),
+            "best fixed (x)": prep.energy_of(fs.controllers[fs.chosen_x])}
+
+
+def direct_dwell(example: str, fs: FixedSet, law: str):
+    """The gain-switching law's candidates in the direct realization (u from the active
+    candidate alone, no copies) and the Geromel–Colaneri dwell time that certifies it.
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+    fs : FixedSet
+    law : str
+        The chosen setting ``candidates/law/realization/λ/h``.
+
+    Returns
+    -------
+    (fdsc.Supervisor, float or None)
+        None if no dwell up to 10³ s is certified.
+    """
+    from fdsc.paper.pays.disturbance_law_runs import law_candidates
+
+    ex = _example(example)
+    cand, kind = law.split("/")[:2]
+    _names, ctrls = law_candidates(example, cand, fs)
+    bands = [ex.bands["LF"], ex.bands["HF"]] if kind == "band_power" else None
+    sup = fdsc.Supervisor(ex.plant, list(ctrls), law=kind, bands=bands, decide_every=DECIDE_EVERY,
+                          restart=RESTART)
+    try:
+        tau = fdsc.geromel_colaneri_dwell(sup.switched_loops(), tau_max=1e3).tau
+    except fdsc.SolverError:
+        tau = None
+    return sup, tau
+
+
+def ladder_noisy(example: str, index: int, seed: int, fs: FixedSet, settings: dict, snr_db: float,
+                 law: str | None = None, tau=None) -> dict:
+    """The realizable rungs that read ŵ on a noisy estimate (the noise of chapter
+    'disturbance_law', seeded by ``[seed, index, 1]``), each over the best fixed controller
+    (x, ŵ) on the same noisy estimate; and that controller over itself on the exact one.
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+    index, seed : int
+    fs : FixedSet
+    settings : dict
+    snr_db : float
+
+    law : str, optional
+        The gain-switching law's setting: run also in the direct realization with the dwell
+        ``tau`` enforced, deciding on the noisy estimate (no copies carry the noise into u).
+    tau : float, optional
+        Its certified dwell (:func:`direct_dwell`).
+
+    Returns
+    -------
+    dict
+        ``{"predictive", "scheduled", "fixed_noise_cost"}`` ratios, and ``"gain switching
+        (direct)"`` when ``law`` is given and a dwell is certified.
+    """
+    from fdsc.paper.pays.disturbance_law_robust import noisy_estimate
+
+    ex, dr = seeded_draw(example, index, seed)
+    what = noisy_estimate(ex, dr, snr_db, np.random.default_rng([seed, index, 1]))
+    pred = predictive_law(example, fs, settings["window"], settings["max_residual"])
+    sup = scheduled(example, fs)
+    built = sup.prepare(dr.d, dr.horizon, estimate=what)
+    best = fs.controllers[fs.chosen]
+    ref = built.energy_of(best)
+    exact = sup.prepare(dr.d, dr.horizon).energy_of(best)
+    out = {"predictive": pred.run(dr.d, dr.horizon, estimate=what).energy / ref,
+           "scheduled": built.run(forgetting=settings["forgetting"],
+                                  hysteresis=settings["hysteresis"]).energy / ref,
+           "fixed_noise_cost": ref / exact}
+    if law is not None and tau is not None:
+        sup_d, _tau = direct_dwell(example, fs, law)
+        lam, h = (float(v) for v in law.split("/")[-2:])
+        run = sup_d.prepare(dr.d, dr.horizon, estimate=what).run(forgetting=lam, hysteresis=h, min_dwell=tau)
+        out["gain switching (direct)"] = run.energy / ref
+    return out
+
+
+def bootstrap_median(x, n: int = BOOT, seed: int = BOOT_SEED) -> tuple:
+    """The median of x and a percentile-bootstrap 95 % interval for it (seeded).
+
+    Parameters
+    ----------
+    x : (N,) array_like
+    n : int, optional
+        Resamples.
+    seed : int, optional
+
+    Returns
+    -------
+    (median, low, high)
+
+    Examples
+    --------
+    >>> m, lo, hi = bootstrap_median(np.arange(1.0, 101.0))
+    >>> m, bool(lo < m < hi)
+    (50.5, True)
+    """
+    x = np.asarray(x, dtype=float)
+    rng = np.random.default_rng(seed)
+    med = np.median(x[rng.integers(0, x.size, (n, x.size))], axis=1)
+    lo, hi = np.quantile(med, [0.025, 0.975])
+    return float(np.median(x)), float(lo), float(hi)
+
+
+def summarize(ratios: dict) -> dict:
+    """Per rung: median with its bootstrap interval, win rate, 95th percentile; per causal law the
+    median share of the headroom (log ratio over the limit's log ratio, per draw).
+
+    Parameters
+    ----------
+    ratios : dict
+        ``{rung: per-draw ratios to the best fixed controller (x, ŵ)}`` (the limit among them).
+
+    Returns
+    -------
+    dict
+    """
+    from fdsc.paper.shared.examples import beats
+
+    out = {}
+    lim = np.log(np.asarray(ratios["limit"], dtype=float))
+    for rung, q in ratios.items():
+        q = np.asarray(q, dtype=float)
+        m, lo, hi = bootstrap_median(q)
+        row = {"median": m, "low": lo, "high": hi, "win_rate": float(np.mean(beats(q))),
+               "p95": float(np.quantile(q, 0.95)), "draws": int(q.size)}
+        if rung in REALIZABLE or rung in ("known tones", "scheduled at breaks"):
+            share = np.log(q) / lim
+            row["headroom_share"] = bootstrap_median(share)
+        out[rung] = row
+    return out
