@@ -38,8 +38,12 @@ the text a browser shows once MathJax has run.
 
 Readers' pages
 --------------
-The landing page (:data:`ROOT_PAGE`) must open with a section "Findings at a glance" and hold at
-most :data:`MAX_ROOT_WORDS` words of visible text. No page's visible text may speak to the project
+The landing page (:data:`ROOT_PAGE`) must open with a section "Replication summary" of at most
+:data:`MAX_SUMMARY_WORDS` words of visible text (up to the reading paths), and its list of errata
+must have as many items as the report's (:data:`REPORT_PAGE`). Every page that uses a term of
+:data:`LINKED_TERMS` links it to the glossary at least once. No sentence calls Theorem 1's LMIs a
+certificate (:func:`theorem1_certified`): their feasibility certifies nothing (they hold for every
+Hurwitz pair). No page's visible text may speak to the project
 instead of the reader (:data:`PROJECT_SPEAK`: issue numbers, paths of test files, "record entry",
 the ids of the reproduction record's entries outside the report's tables, raw NumPy arrays
 printed with runs of spaces). And code a reader sees (notebook input areas not folded away by a
@@ -54,7 +58,8 @@ from itertools import pairwise
 from pathlib import Path
 from urllib.parse import unquote, urlparse
 
-__all__ = ["check", "visible_text", "raw_tex_snippets", "code_share", "project_speak"]
+__all__ = ["check", "visible_text", "raw_tex_snippets", "code_share", "project_speak", "unlinked_terms",
+           "theorem1_certified"]
 
 #: Chapters and the least number of figures each must show.
 MIN_IMAGES = {"frequency_ranges.html": 3, "gkyp_lemma.html": 1, "passive_controllers.html": 3,
@@ -64,8 +69,7 @@ MIN_IMAGES = {"frequency_ranges.html": 3, "gkyp_lemma.html": 1, "passive_control
 MAX_TEX_REPORTS = 3
 #: The landing page, its heading and its length in words of visible text.
 ROOT_PAGE = "intro.html"
-FINDINGS_HEADING = "Findings at a glance"
-MAX_ROOT_WORDS = 1500
+FINDINGS_HEADING = "Replication summary"
 #: Largest share of a page's words that may be visible code, and the pages exempt: the own-plant
 #: chapter is the library's worked example, whose code is what the reader came for.
 MAX_CODE_SHARE = 0.15
@@ -94,7 +98,21 @@ PROJECT_SPEAK = (
     ("'record entry'", re.compile(r"\brecord entr(?:y|ies)\b", re.IGNORECASE)),
     ("a raw NumPy array", re.compile(r"\[\s*-?\d+\.?\d*(?:e[-+]?\d+)? {2,}-?\d|\barray\(")),
     ("a record-entry id", re.compile(r"(?<![\w.])(?:" + "|".join(RECORD_IDS) + r")(?![\w(])")),
+    ("a Python list of names", re.compile(r"\[\s*'[a-z][a-z0-9_]*'\s*,\s*'[a-z][a-z0-9_]*'")),
+    ("a Python tuple", re.compile(r"\((?:True|False|None), |\(-?\d+\.\d{9,}, (?:True|False)")),
+    ("a glue key or code name", re.compile(r"(?<![\w.$\\/-])(?!(?:" + "|".join(RECORD_IDS) + r")(?![\w(]))"
+                                           r"[a-z][a-z0-9]*_[a-z0-9]+_[a-z0-9_]+(?![\w(/.])")),
 )
+#: The terms every page that uses them links to the glossary at least once (lower case).
+LINKED_TERMS = ("fixed controller chosen in advance", "best fixed controller with equal information",
+                "non-causal limit", "disturbance estimate", "clairvoyant switching reference",
+                "comparator set", "static front", "dynamic front")
+GLOSSARY_PAGE = "glossary.html"
+#: The page whose list of errata the landing page repeats.
+REPORT_PAGE = "report.html"
+#: The landing page's summary: at most this many words from its heading to the reading paths.
+MAX_SUMMARY_WORDS = 1500
+SUMMARY_END = "Reading paths"
 #: Pages whose tables list the record's ids by design.
 _ID_PAGES = {"report.html"}
 
@@ -292,6 +310,73 @@ def project_speak(text, page=""):
     return found
 
 
+def unlinked_terms(html, text):
+    """The terms of :data:`LINKED_TERMS` that a page's visible text uses but none of its links to
+    the glossary carries.
+
+    Parameters
+    ----------
+    html : str
+        The page.
+    text : str
+        Its visible text.
+
+    Returns
+    -------
+    list of str
+    """
+    low = " ".join(text.lower().split())
+    anchors = re.findall(r'<a [^>]*href="[^"]*glossary\.html#term[^"]*"[^>]*>(.*?)</a>', html, flags=re.S)
+    linked = " ".join(" ".join(re.sub(r"<[^>]+>", " ", m).lower().split()) for m in anchors)
+    return [t for t in LINKED_TERMS if t in low and t not in linked]
+
+
+def theorem1_certified(text):
+    """Sentences that call Theorem 1's LMIs (or their feasibility) a certificate, unless negated.
+
+    Parameters
+    ----------
+    text : str
+
+    Returns
+    -------
+    list of str
+
+    Examples
+    --------
+    >>> theorem1_certified("The printed Q's are certified by Theorem 1's LMIs. They are not.")
+    ["The printed Q's are certified by Theorem 1's LMIs."]
+    >>> theorem1_certified("Theorem 1's LMIs are feasible, which this book does not call certified.")
+    []
+    """
+    out = []
+    for sentence in re.split(r"(?<=[.;:])\s+", " ".join(text.split())):
+        low = sentence.lower()
+        if "theorem 1" in low and "lmi" in low and "certif" in low \
+                and not re.search(r"\b(?:not|never|no|nothing|neither|nor)\b", low):
+            out.append(sentence)
+    return out
+
+
+def _errata_problems(root, page):
+    """The landing page's errata against the report's: as many items."""
+    report = root / REPORT_PAGE
+    if not report.is_file():
+        return []
+    rep = report.read_text(encoding="utf-8")
+    m = re.search(r"<ol class=.errata.>(.*?)</ol>", rep, flags=re.S)
+    if m is None:
+        return [f"{REPORT_PAGE}: no list of errata"]
+    n_report = len(re.findall(r"<li\b", m.group(1)))
+    html = page.read_text(encoding="utf-8")
+    at = html.find("Errata.")
+    m2 = re.search(r"<ol\b[^>]*>(.*?)</ol>", html[at:], flags=re.S) if at >= 0 else None
+    n_here = len(re.findall(r"<li\b", m2.group(1))) if m2 else 0
+    if n_here != n_report:
+        return [f"{page.name}: {n_here} errata, the report lists {n_report}"]
+    return []
+
+
 def check(root):
     root = Path(root)
     problems = []
@@ -331,12 +416,19 @@ def check(root):
         problems += [f"{page.name}: {what} in the prose: '{snippet}'"
                      for what, snippet in project_speak(c.text, page.name)[:MAX_TEX_REPORTS]]
         if page.name == ROOT_PAGE:
-            words = len(c.text.split())
-            if words > MAX_ROOT_WORDS:
-                problems.append(f"{page.name}: {words} words of visible text, the landing page may "
-                                f"have at most {MAX_ROOT_WORDS}")
             if FINDINGS_HEADING not in c.text:
                 problems.append(f"{page.name}: no section '{FINDINGS_HEADING}'")
+            else:
+                summary = c.text.split(FINDINGS_HEADING, 1)[1].split(SUMMARY_END, 1)[0]
+                if len(summary.split()) > MAX_SUMMARY_WORDS:
+                    problems.append(f"{page.name}: the summary has {len(summary.split())} words of visible "
+                                    f"text, at most {MAX_SUMMARY_WORDS}")
+            problems += _errata_problems(root, page)
+        if page.name != GLOSSARY_PAGE:
+            problems += [f"{page.name}: uses '{t}' without linking it to the glossary"
+                         for t in unlinked_terms(page.read_text(encoding="utf-8"), c.text)]
+        problems += [f"{page.name}: Theorem 1's LMIs called a certificate: '{s}'"
+                     for s in theorem1_certified(c.text)[:MAX_TEX_REPORTS]]
         tex = raw_tex_snippets(c.text)
         problems += [f"{page.name}: raw TeX in visible text: '{s}'" for s in tex[:MAX_TEX_REPORTS]]
         if len(tex) > MAX_TEX_REPORTS:

@@ -125,7 +125,7 @@ def test_the_answer_is_on_the_first_screen(browser):
     context = browser.new_context(viewport={"width": 1280, "height": 800})
     pg = context.new_page()
     pg.goto((HTML / "intro.html").as_uri(), wait_until="load")
-    heading = pg.get_by_role("heading", name="Findings at a glance")
+    heading = pg.get_by_role("heading", name="Replication summary")
     box = heading.bounding_box()
     assert box is not None and 0 <= box["y"] and box["y"] + box["height"] <= 800, box
     captions = pg.locator(".caption-text").all_inner_texts()

@@ -175,14 +175,32 @@ def test_project_speak_is_reported_with_what_it_is():
 def test_readers_pages_are_checked_in_the_build(tmp_path):
     shutil.copy(READERS_PAGE, tmp_path / "stationary.html")
     words = " ".join(["word"] * 1600)
-    write(tmp_path, "intro.html", f"<h1>Title</h1><h2>Findings at a glance</h2><p>{words}</p>")
+    write(tmp_path, "intro.html", f"<h1>Title</h1><h2>Replication summary</h2><p>{words}</p>"
+                                  "<h2>Reading paths</h2>")
     write(tmp_path, "own_plant.html",
           '<div class="cell_input"><pre>' + "x = 1\n" * 50 + "</pre></div><p>a</p>")
     found = "\n".join(check(tmp_path))
     assert "stationary.html: visible code is" in found
     assert "stationary.html: an issue number in the prose" in found
-    assert "intro.html: 1605 words of visible text" in found    # 1600 + title and heading
+    assert "intro.html: the summary has 1600 words of visible text" in found
     assert "own_plant.html" not in found          # the worked example may show its code
     write(tmp_path, "intro.html", "<h1>Title</h1><p>No answer here.</p>")
     found = "\n".join(check(tmp_path))
-    assert "intro.html: no section 'Findings at a glance'" in found
+    assert "intro.html: no section 'Replication summary'" in found
+
+
+def test_the_consistency_checks_find_their_defects(tmp_path):
+    from check_book_html import theorem1_certified, unlinked_terms
+
+    write(tmp_path, "report.html", "<ol class='errata'><li>a</li><li>b</li></ol>")
+    write(tmp_path, "intro.html", "<h2>Replication summary</h2><p>Errata.</p><ol><li>a</li></ol>"
+                                  "<h2>Reading paths</h2><p>the fixed controller chosen in advance</p>"
+                                  "<p>(True, 3) and ['pc_pb_n_close', 'pc_x']</p>")
+    found = "\n".join(check(tmp_path))
+    assert "intro.html: 1 errata, the report lists 2" in found
+    assert "intro.html: uses 'fixed controller chosen in advance' without linking it" in found
+    assert "a Python tuple" in found and "a Python list of names" in found
+    page = ('<a href="glossary.html#term-fixed-controller-chosen-in-advance">fixed controller chosen in '
+            'advance</a>')
+    assert unlinked_terms(page, "the fixed controller chosen in advance") == []
+    assert theorem1_certified("The Q's, certified by Theorem 1's LMIs, hold.") != []

@@ -17,6 +17,7 @@ from fdsc.paper.pays import (
     disturbance_law,
     fixed_controllers,
     generic_example,
+    ladder,
     monte_carlo,
 )
 from fdsc.paper.repairs import theorem1_counterexamples, three_mode, wellposed
@@ -98,7 +99,8 @@ def figure_status(record):
 #: The chapters that contribute to the record, in the record's order (first the printed inputs).
 CHAPTERS = (inputs, frequency_ranges, gkyp_lemma, passive_controllers, frequency_selective, theorem1,
             theorem1_counterexamples, switching_law, stationary, nonstationary, wellposed, three_mode,
-            fixed_controllers, baselines, generic_example, monte_carlo, comparator_wins, disturbance_law)
+            fixed_controllers, baselines, generic_example, monte_carlo, comparator_wins, disturbance_law,
+            ladder)
 
 
 #: The book page that computes each chapter module's entries (the report links to it); entries

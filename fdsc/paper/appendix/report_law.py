@@ -11,7 +11,7 @@ import html
 from fdsc.paper.appendix.report_counts import entries_of
 from fdsc.paper.shared.prose import count, pct, times
 
-__all__ = ["LAW_ENTRY", "law_rows"]
+__all__ = ["LAW_ENTRY", "law_rows", "ladder_rows"]
 
 #: The entry of the law on the disturbance estimate: the build-time check of the stored study,
 #: shown beside it (:func:`law_rows`), not among the findings.
@@ -75,4 +75,45 @@ def law_rows(record, full=None, *, fresh=True):
                  "sequence (training draws of the stored study), half to train, half to score, a "
                  "shorter search for the tuned designs")
         rows.append(_law_row(label, example, r))
+    return rows
+
+
+def ladder_rows(full):
+    """The ladder of the stored study (every rung over the best fixed controller with equal
+    information), per example and rung, labelled with its commit.
+
+    Parameters
+    ----------
+    full : dict or None
+        The stored study (:func:`fdsc.paper.pays.disturbance_law.load_full`).
+
+    Returns
+    -------
+    list of dict
+        Trusted-HTML cells ``example``, ``rung``, ``median`` (median [bootstrap 95 % interval]),
+        ``wins`` and ``share`` (of the headroom to the non-causal limit, causal rungs only);
+        empty without a stored ladder.
+
+    Examples
+    --------
+    >>> row = {"median": 0.8, "low": 0.79, "high": 0.81, "win_rate": 1.0, "draws": 250}
+    >>> full = {"commit": "048c47d821e7", "aircraft": {"ladder": {"summary": {"limit": row}}}}
+    >>> [(r["rung"], r["median"]) for r in ladder_rows(full)]
+    [('non-causal limit (knows the whole draw)', '×0.800 [0.790, 0.810]')]
+    """
+    from fdsc.paper.pays.ladder import RUNG_WORDS, RUNGS
+
+    rows = []
+    for example in _LAW_EXAMPLES:
+        lad = (full or {}).get(example, {}).get("ladder")
+        if not lad:
+            continue
+        for rung in RUNGS:
+            s = lad["summary"].get(rung)
+            if s is None:
+                continue
+            share = s.get("headroom_share")
+            rows.append({"example": _LAW_EXAMPLES[example], "rung": html.escape(RUNG_WORDS[rung]),
+                         "median": f"{times(s['median'])} [{times(s['low'])[1:]}, {times(s['high'])[1:]}]",
+                         "wins": pct(s["win_rate"]), "share": pct(share[0]) if share else ""})
     return rows

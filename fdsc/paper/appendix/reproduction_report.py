@@ -31,7 +31,7 @@ from fdsc.paper.appendix.report_counts import (
     printed_counts,
     summary,
 )
-from fdsc.paper.appendix.report_law import LAW_ENTRY, law_rows
+from fdsc.paper.appendix.report_law import LAW_ENTRY, ladder_rows, law_rows
 from fdsc.paper.appendix.report_values import details, note_html, number_text, page_titles, value_html, words
 from fdsc.paper.record import PAPER_FIGURES, figure_status
 from fdsc.paper.shared.verdict import CLAIM_VERDICTS, worst_verdict
@@ -53,7 +53,9 @@ __all__ = [
     "claim_rows",
     "finding_rows",
     "errata",
+    "errata_summary",
     "law_rows",
+    "ladder_rows",
     "page_titles",
     "summary",
     "printed_counts",
@@ -421,3 +423,25 @@ def errata(record):
               "ours": value_html(c["value"], 4), "verdict": c["verdict"], "why": note_html(c["reason"])}
              for c in claims_of(record) or [] if c["verdict"] == "FAIL"]
     return [{"n": k, **r} for k, r in enumerate(rows, start=1)]
+
+
+def errata_summary(record) -> str:
+    """The errata of :func:`errata` as a short numbered Markdown list (where, and the verdict),
+    the same items in the same order, for the book's summary page.
+
+    Parameters
+    ----------
+    record : dict
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> rec = {"entries": [{"id": "a", "source": "Sec. IV, K", "paper": 0.2, "recomputed": 0.1,
+    ...                     "verdict": "differs", "note": "n"}]}
+    >>> errata_summary(rec)
+    '1. Sec. IV, K: *differs*'
+    """
+    return "\n".join(f"{r['n']}. {html.unescape(r['where'])}: *{r['verdict']}*" for r in errata(record))

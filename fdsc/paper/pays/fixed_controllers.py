@@ -178,5 +178,20 @@ def answer(full: dict) -> str:
             f"*{near}* ({r['fixed_controllers'][near]['family']}): median "
             f"{times(float(np.median(rivals[near])))}, "
             f"and the chosen controller has less energy on {pct(near_wins)} of the draws, so the choice "
-            "made on the training draws is among the best, not alone at the top.")
+            "made on the training draws is among the best, not alone at the top."
+            + _x_only(r))
     return " ".join(parts)
+
+
+def _x_only(r) -> str:
+    """The sentence on the best fixed controller reading x alone (stored studies that have it)."""
+    from fdsc.paper.shared.prose import pct, times
+
+    name = r.get("fixed_in_advance_x")
+    if not name or name == r["fixed_in_advance"]:
+        return ""
+    q = np.asarray(r["fixed_ratio"][name], dtype=float)
+    more = pct(float(np.mean(q > 1.0)))
+    return (f" The best fixed controller reading x alone, *{name}*, has a median "
+            f"{times(float(np.median(q)))} the energy of the chosen one (more on {more} "
+            "of the draws): knowing the disturbance estimate pays by itself.")

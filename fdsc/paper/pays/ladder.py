@@ -46,7 +46,8 @@ from fdsc.paper.pays.fixed_designs import FixedSet
 
 __all__ = ["PREDICTIVE_GRID", "N_CHOOSE", "BOOT", "law_band", "predictive_law", "scheduled",
            "choose_settings", "ladder_draw", "ladder_noisy", "direct_dwell", "summarize", "bootstrap_median",
-           "RUNGS", "RUNG_WORDS", "MAX_TONES"]
+           "RUNGS", "RUNG_WORDS", "MAX_TONES", "N_RECHECK", "recheck_ladder",
+           "best_realizable", "answer", "record_part", "REALIZABLE"]
 
 #: The predictive law's settings tried on the training draws: seconds of ŵ per identification
 #: and the largest share of the window's power its fit may leave unexplained; and the most tones
@@ -354,3 +355,119 @@ def summarize(ratios: dict) -> dict:
             row["headroom_share"] = bootstrap_median(share)
         out[rung] = row
     return out
+
+
+#: Test draws of the stored study the build recomputes per example (the build-time check).
+N_RECHECK = 1
+
+
+def recheck_ladder(full: dict, example: str, k: int = N_RECHECK) -> dict:
+    """The ladder's computed rungs on the stored study's first ``k`` test draws, recomputed now
+    from the stored controllers and settings, against the stored ratios.
+
+    Parameters
+    ----------
+    full : dict
+        The stored full study (:func:`fdsc.paper.pays.disturbance_law.load_full`).
+    example : {"aircraft", "generic"}
+    k : int, optional
+
+    Returns
+    -------
+    dict
+        ``{"draws", "rungs", "largest_difference"}`` (the largest relative difference of a ratio).
+    """
+    from fdsc.paper.pays.disturbance_law_full import stored_fixed_set
+
+    lad = full[example]["ladder"]
+    fs = stored_fixed_set(full, example)
+    worst = 0.0
+    for j, index in enumerate(lad["test_indices"][:k]):
+        row = ladder_draw(example, index, full["seed"], fs, lad["settings"])
+        ref = row["best fixed (x, ŵ)"]
+        for rung, ratios in lad["ratios"].items():
+            if rung in row:
+                worst = max(worst, abs(row[rung] / ref / ratios[j] - 1.0))
+    return {"draws": k, "rungs": sum(r in lad["ratios"] for r in RUNGS), "largest_difference": worst}
+
+
+def best_realizable(summary: dict) -> str:
+    """The realizable rung of least median ratio.
+
+    Parameters
+    ----------
+    summary : dict
+
+    Returns
+    -------
+    str
+    """
+    return min((r for r in REALIZABLE if r in summary), key=lambda r: summary[r]["median"])
+
+
+def answer(full: dict) -> dict:
+    """Per example, the ladder's answer in one sentence (Markdown), from the stored study: the
+    best realizable controller against the best fixed controller with equal information and the
+    limit.
+
+    Parameters
+    ----------
+    full : dict
+
+    Returns
+    -------
+    dict
+        ``{example: str}``.
+    """
+    from fdsc.paper.shared.prose import count, pct, times
+
+    out = {}
+    for example in ("aircraft", "generic"):
+        lad = full[example]["ladder"]
+        s = lad["summary"]
+        best = best_realizable(s)
+        b, lim, x = s[best], s["limit"], s["best fixed (x)"]
+        share = b["headroom_share"][0]
+        out[example] = (
+            f"the best realizable controller is the {RUNG_WORDS[best]}: a median {_ci(b)} the energy of the "
+            f"best fixed controller reading x and ŵ, less energy on {pct(b['win_rate'])} of "
+            f"{count(b['draws'])} test draws, where no controller can go below the non-causal "
+            f"limit's {_ci(lim)}; it takes {pct(max(share, 0.0))} of that headroom (in log). The best "
+            f"fixed controller reading x alone has {times(x['median'])}.")
+    return out
+
+
+def _ci(row) -> str:
+    """``×m [lo, hi]`` of a summary row."""
+    from fdsc.paper.shared.prose import times
+
+    return f"{times(row['median'])} [{times(row['low'])[1:]}, {times(row['high'])[1:]}]"
+
+
+def record_part():
+    """Record entry ``ladder`` (new): the stored study's ladder per example (stored, with its
+    commit) and the build's recomputation of its first test draw.
+
+    Returns
+    -------
+    RecordPart
+    """
+    from fdsc.paper.pays.disturbance_law_full import load_full
+    from fdsc.paper.shared.results import RecordPart, entry
+
+    full = load_full()
+    if full is None or "ladder" not in full.get("aircraft", {}):
+        return RecordPart((entry("ladder", "our computation (the ladder)", None, None, "new",
+                                 "the stored study is not in this checkout"),))
+    value = {}
+    for example in ("aircraft", "generic"):
+        lad = full[example]["ladder"]
+        value[example] = {"summary": lad["summary"], "settings": lad["settings"],
+                          "recheck": recheck_ladder(full, example)}
+    words = answer(full)
+    note = (f"stored full study (commit {full['commit'][:12]}): "
+            + "; ".join(f"{e}: {w}" for e, w in words.items())
+            + " The build recomputes the first test draw of each example from the stored "
+              "controllers.")
+    return RecordPart((entry("ladder", "our computation (the ladder, stored study)", None, value, "new",
+                             note),))

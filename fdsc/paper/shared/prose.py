@@ -13,7 +13,8 @@ from numbers import Integral, Real
 
 import numpy as np
 
-__all__ = ["num", "count", "times", "span", "pct", "matrix_text", "glue_numbers"]
+__all__ = ["num", "count", "times", "span", "pct", "matrix_text", "glue_numbers", "reading_minutes",
+           "WORDS_PER_MINUTE"]
 
 _SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
 
@@ -239,3 +240,38 @@ def glue_numbers(numbers, prefix=""):
         glue(prefix + key, value, display=False)
         names.append(prefix + key)
     return names
+
+
+#: Words a reader reads per minute (the reading time the landing page states).
+WORDS_PER_MINUTE = 230
+
+
+def reading_minutes(book_dir) -> int:
+    """The minutes a reader needs for the book's prose: the words of every page's Markdown (the
+    notebooks' text cells and the Markdown pages; code, tables and figures not counted) at
+    :data:`WORDS_PER_MINUTE`.
+
+    Parameters
+    ----------
+    book_dir : path
+        The book's folder (with ``_toc.yml``).
+
+    Returns
+    -------
+    int
+    """
+    import json
+    import re
+    from pathlib import Path
+
+    book = Path(book_dir)
+    words = 0
+    for p in sorted(book.glob("*.ipynb")) + sorted(book.glob("*.md")):
+        if p.suffix == ".ipynb":
+            cells = json.loads(p.read_text(encoding="utf-8"))["cells"]
+            text = "\n".join("".join(c["source"]) for c in cells if c["cell_type"] == "markdown")
+        else:
+            text = p.read_text(encoding="utf-8")
+        text = re.sub(r"```.*?```", " ", text, flags=re.S)          # directives and code blocks
+        words += len(re.findall(r"[A-Za-zÀ-ÿ]{2,}", text))
+    return max(1, round(words / WORDS_PER_MINUTE))

@@ -1,0 +1,93 @@
+"""fdsc.paper.pays.ladder (chapter 'ladder'): the summaries and intervals, the figure, the rungs of
+one draw against the bound, the stored study's ladder rechecked, and the summary page's errata
+equal to the report's."""
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from fdsc.paper.pays import ladder as ld
+from fdsc.paper.pays.disturbance_law import load_full
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def test_the_bootstrap_interval_holds_the_median_and_narrows_with_more_draws():
+    rng = np.random.default_rng(0)
+    x = rng.lognormal(0.0, 0.1, 400)
+    m, lo, hi = ld.bootstrap_median(x)
+    m4, lo4, hi4 = ld.bootstrap_median(x[:100])
+    assert lo < m < hi and lo4 < m4 < hi4
+    assert hi - lo < hi4 - lo4                          # four times the draws: about half the width
+    assert ld.bootstrap_median(x) == (m, lo, hi)         # seeded
+
+
+def test_the_summary_measures_each_causal_rung_against_the_limit():
+    lim = np.array([0.5, 0.8, 0.64])
+    ratios = {"limit": lim, "predictive": np.sqrt(lim), "best fixed (x, ŵ)": np.ones(3),
+              "FDSC": 2 * np.ones(3)}
+    s = ld.summarize(ratios)
+    np.testing.assert_allclose(s["predictive"]["headroom_share"][0], 0.5)   # half of every log gap
+    assert s["FDSC"]["headroom_share"][0] < 0 and s["FDSC"]["win_rate"] == 0.0
+    assert "headroom_share" not in s["best fixed (x, ŵ)"] and s["predictive"]["win_rate"] == 1.0
+    assert ld.best_realizable(s) == "predictive"
+
+
+def test_the_figure_draws_a_rung_beyond_its_axis_at_the_edge_with_its_median():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from fdsc.paper.pays.plotting_ladder import plot_ladder
+
+    summary = {"limit": {"median": 0.7, "low": 0.68, "high": 0.72},
+               "FDSC": {"median": 53.0, "low": 40.0, "high": 60.0}}
+    fig, ax = plt.subplots()
+    plot_ladder(summary, ax)
+    texts = [t.get_text() for t in ax.texts]
+    assert "×53" in texts and "×0.700" in texts
+    assert ax.get_xlim() == pytest.approx((0.5, 2.0))
+    plt.close(fig)
+
+
+def _stored():
+    full = load_full()
+    if full is None or "ladder" not in full.get("generic", {}):
+        pytest.skip("the stored study with the ladder is not in this checkout")
+    return full
+
+
+@pytest.mark.parametrize("example", ["aircraft", "generic"])
+def test_the_stored_ladder_respects_its_bound_on_every_draw(example):
+    lad = _stored()[example]["ladder"]
+    r = {k: np.asarray(v) for k, v in lad["ratios"].items()}
+    for rung in r:
+        assert np.all(r["limit"] <= r[rung] * (1 + 1e-9)), rung
+    assert np.all(r["best fixed (x, ŵ)"] == 1.0)
+    assert len(r["limit"]) == len(lad["test_indices"]) == _stored()[example]["draws_test"]
+
+
+@pytest.mark.parametrize("example", ["aircraft", "generic"])
+def test_the_stored_ladder_is_recomputed_from_its_controllers(example):
+    assert ld.recheck_ladder(_stored(), example)["largest_difference"] < 1e-6
+
+
+def test_a_changed_stored_ratio_is_caught_by_the_recheck():
+    full = json.loads(json.dumps(_stored()))
+    full["generic"]["ladder"]["ratios"]["predictive"][0] *= 1.001
+    assert ld.recheck_ladder(full, "generic")["largest_difference"] > 5e-4
+
+
+def test_the_summary_pages_errata_are_the_reports():
+    from fdsc.paper.appendix.reproduction_report import errata, errata_summary
+
+    record = json.loads((ROOT / "book" / "data" / "reproduction.json").read_text()) \
+        if (ROOT / "book" / "data" / "reproduction.json").is_file() else None
+    if record is None:
+        pytest.skip("no built record in this checkout")
+    lines = errata_summary(record).splitlines()
+    assert len(lines) == len(errata(record)) > 0
+    assert [ln.split(". ", 1)[0] for ln in lines] == [str(r["n"]) for r in errata(record)]
