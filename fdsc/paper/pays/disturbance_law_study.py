@@ -352,9 +352,9 @@ def answer(full: dict) -> dict:
         printed = r["fdsc_median_ratio"]["FDSC"]
         ci = ""
         if "ladder" in r:
-            from fdsc.paper.pays.ladder import _ci
+            from fdsc.paper.shared.prose import times_ci
 
-            ci = f" [95 % interval {_ci(r['ladder']['summary']['gain switching']).split('[')[1]}"
+            ci = f" [95 % interval {times_ci(r['ladder']['summary']['gain switching']).split('[')[1]}"
         out[example] = (
             f"the best law, {describe(r['law'])}, has a median "
             f"{times(r['median_ratio_vs_fixed_in_advance'])}{ci} "

@@ -122,8 +122,9 @@ def family_summary(full: dict, example: str) -> dict:
     Returns
     -------
     dict
-        ``{family: {"name", "median", "p95", "chosen_wins"}}`` (``chosen_wins``: share of test
-        draws on which the chosen controller has less energy), in the order of :data:`FAMILIES`.
+        ``{family: {"name", "median", "low", "high", "p95", "chosen_wins"}}`` (``low``, ``high``:
+        the median's bootstrap 95 % interval; ``chosen_wins``: share of test draws on which the
+        chosen controller has less energy), in the order of :data:`FAMILIES`.
     """
     r = full[example]
     fc = r["fixed_controllers"]
@@ -134,8 +135,11 @@ def family_summary(full: dict, example: str) -> dict:
             continue
         best = min(members, key=lambda k: fc[k]["train_score"])
         q = np.asarray(r["fixed_ratio"][best])
-        out[fam] = {"name": best, "median": float(np.median(q)), "p95": float(np.quantile(q, 0.95)),
-                    "chosen_wins": float(np.mean(q > 1.0 + 1e-6))}
+        from fdsc.paper.shared.stats import bootstrap_median
+
+        _m, lo, hi = bootstrap_median(q)
+        out[fam] = {"name": best, "median": float(np.median(q)), "low": lo, "high": hi,
+                    "p95": float(np.quantile(q, 0.95)), "chosen_wins": float(np.mean(q > 1.0 + 1e-6))}
     return out
 
 
@@ -150,7 +154,7 @@ def answer(full: dict) -> str:
     -------
     str
     """
-    from fdsc.paper.shared.prose import count, pct, times
+    from fdsc.paper.shared.prose import count, pct, times, times_ci
 
     parts = []
     for example in ("aircraft", "generic"):
@@ -171,9 +175,9 @@ def answer(full: dict) -> str:
         parts.append(
             f"On the **{example}** example the fixed controller chosen in advance is *{chosen}* ({kind}, "
             f"{r['fixed_in_advance_family']} family). The best member of the comparator set, chosen the "
-            f"same way ({old['name']}), has a median {times(old['median'])} its energy on "
-            f"{count(r['draws_test'])} test draws, the best point of the static front "
-            f"({front['name']}) {times(front['median'])}; the chosen controller has less energy "
+            f"same way ({old['name']}), has a median {times_ci(old)} its energy on "
+            f"{count(r['draws_test'])} test draws (median [bootstrap 95 % interval]), the best point of "
+            f"the static front ({front['name']}) {times_ci(front)}; the chosen controller has less energy "
             f"than they do {wins}. The closest of all the other fixed controllers on the test draws is "
             f"*{near}* ({r['fixed_controllers'][near]['family']}): median "
             f"{times(float(np.median(rivals[near])))}, "

@@ -43,8 +43,9 @@ from fdsc.paper.pays.disturbance_law_draws import (
     seeded_draw,
 )
 from fdsc.paper.pays.fixed_designs import FixedSet
+from fdsc.paper.shared.stats import bootstrap_median
 
-__all__ = ["PREDICTIVE_GRID", "N_CHOOSE", "BOOT", "law_band", "predictive_law", "scheduled",
+__all__ = ["PREDICTIVE_GRID", "N_CHOOSE", "law_band", "predictive_law", "scheduled",
            "choose_settings", "ladder_draw", "ladder_noisy", "direct_dwell", "summarize", "bootstrap_median",
            "RUNGS", "RUNG_WORDS", "MAX_TONES", "N_RECHECK", "recheck_ladder",
            "best_realizable", "answer", "record_part", "REALIZABLE"]
@@ -56,8 +57,6 @@ PREDICTIVE_GRID = {"window": (1.0, 2.0, 4.0), "max_residual": (0.03, 0.3)}
 MAX_TONES = 12
 #: Training draws the settings are chosen on (the first ones).
 N_CHOOSE = 16
-#: Bootstrap resamples of the medians' intervals, and their seed.
-BOOT, BOOT_SEED = 2000, 7
 #: The rungs in the order of the ladder (top: the limit), with what each reads.
 RUNGS = ("limit", "known tones", "predictive", "scheduled at breaks", "scheduled", "best fixed (x, ŵ)",
          "best fixed (x)", "gain switching", "FDSC")
@@ -301,33 +300,6 @@ def ladder_noisy(example: str, index: int, seed: int, fs: FixedSet, settings: di
     return out
 
 
-def bootstrap_median(x, n: int = BOOT, seed: int = BOOT_SEED) -> tuple:
-    """The median of x and a percentile-bootstrap 95 % interval for it (seeded).
-
-    Parameters
-    ----------
-    x : (N,) array_like
-    n : int, optional
-        Resamples.
-    seed : int, optional
-
-    Returns
-    -------
-    (median, low, high)
-
-    Examples
-    --------
-    >>> m, lo, hi = bootstrap_median(np.arange(1.0, 101.0))
-    >>> m, bool(lo < m < hi)
-    (50.5, True)
-    """
-    x = np.asarray(x, dtype=float)
-    rng = np.random.default_rng(seed)
-    med = np.median(x[rng.integers(0, x.size, (n, x.size))], axis=1)
-    lo, hi = np.quantile(med, [0.025, 0.975])
-    return float(np.median(x)), float(lo), float(hi)
-
-
 def summarize(ratios: dict) -> dict:
     """Per rung: median with its bootstrap interval, win rate, 95th percentile; per causal law the
     median share of the headroom (log ratio over the limit's log ratio, per draw).
@@ -419,7 +391,7 @@ def answer(full: dict) -> dict:
     dict
         ``{example: str}``.
     """
-    from fdsc.paper.shared.prose import count, pct, times
+    from fdsc.paper.shared.prose import count, pct, times, times_ci
 
     out = {}
     for example in ("aircraft", "generic"):
@@ -429,19 +401,12 @@ def answer(full: dict) -> dict:
         b, lim, x = s[best], s["limit"], s["best fixed (x)"]
         share = b["headroom_share"][0]
         out[example] = (
-            f"the best realizable controller is the {RUNG_WORDS[best]}: a median {_ci(b)} the energy of the "
-            f"best fixed controller reading x and ŵ, less energy on {pct(b['win_rate'])} of "
+            f"the best realizable controller is the {RUNG_WORDS[best]}: a median {times_ci(b)} the energy "
+            f"of the best fixed controller reading x and ŵ, less energy on {pct(b['win_rate'])} of "
             f"{count(b['draws'])} test draws, where no controller can go below the non-causal "
-            f"limit's {_ci(lim)}; it takes {pct(max(share, 0.0))} of that headroom (in log). The best "
+            f"limit's {times_ci(lim)}; it takes {pct(max(share, 0.0))} of that headroom (in log). The best "
             f"fixed controller reading x alone has {times(x['median'])}.")
     return out
-
-
-def _ci(row) -> str:
-    """``×m [lo, hi]`` of a summary row."""
-    from fdsc.paper.shared.prose import times
-
-    return f"{times(row['median'])} [{times(row['low'])[1:]}, {times(row['high'])[1:]}]"
 
 
 def record_part():

@@ -14,7 +14,7 @@ from numbers import Integral, Real
 import numpy as np
 
 __all__ = ["num", "count", "times", "span", "pct", "matrix_text", "glue_numbers", "reading_minutes",
-           "WORDS_PER_MINUTE"]
+           "WORDS_PER_MINUTE", "times_ci"]
 
 _SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
 
@@ -275,3 +275,22 @@ def reading_minutes(book_dir) -> int:
         text = re.sub(r"```.*?```", " ", text, flags=re.S)          # directives and code blocks
         words += len(re.findall(r"[A-Za-zÀ-ÿ]{2,}", text))
     return max(1, round(words / WORDS_PER_MINUTE))
+
+
+def times_ci(row) -> str:
+    """A median ratio with its interval, ``×m [lo, hi]``, from ``{"median", "low", "high"}``.
+
+    Parameters
+    ----------
+    row : dict
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> times_ci({"median": 0.8, "low": 0.79, "high": 0.812})
+    '×0.800 [0.790, 0.812]'
+    """
+    return f"{times(row['median'])} [{times(row['low'])[1:]}, {times(row['high'])[1:]}]"
