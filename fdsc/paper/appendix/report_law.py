@@ -9,7 +9,7 @@ recomputes the same procedure on the first few of its draws when the book is bui
 import html
 
 from fdsc.paper.appendix.report_counts import entries_of
-from fdsc.paper.shared.prose import count, pct, times, times_ci
+from fdsc.paper.shared.prose import count, pct, share_pct, times, times_ci
 
 __all__ = ["LAW_ENTRY", "law_rows", "ladder_rows"]
 
@@ -115,5 +115,5 @@ def ladder_rows(full):
             share = s.get("headroom_share")
             rows.append({"example": _LAW_EXAMPLES[example], "rung": html.escape(RUNG_WORDS[rung]),
                          "median": times_ci(s),
-                         "wins": pct(s["win_rate"]), "share": pct(share[0]) if share else ""})
+                         "wins": pct(s["win_rate"]), "share": share_pct(share[0]) if share else ""})
     return rows

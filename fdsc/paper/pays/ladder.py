@@ -391,7 +391,7 @@ def answer(full: dict) -> dict:
     dict
         ``{example: str}``.
     """
-    from fdsc.paper.shared.prose import count, pct, times, times_ci
+    from fdsc.paper.shared.prose import count, pct, share_pct, times, times_ci
 
     out = {}
     for example in ("aircraft", "generic"):
@@ -404,7 +404,7 @@ def answer(full: dict) -> dict:
             f"the best realizable controller is the {RUNG_WORDS[best]}: a median {times_ci(b)} the energy "
             f"of the best fixed controller reading x and ŵ, less energy on {pct(b['win_rate'])} of "
             f"{count(b['draws'])} test draws, where no controller can go below the non-causal "
-            f"limit's {times_ci(lim)}; it takes {pct(max(share, 0.0))} of that headroom (in log). The best "
+            f"limit's {times_ci(lim)}; it takes {share_pct(share)} of that headroom (in log). The best "
             f"fixed controller reading x alone has {times(x['median'])}.")
     return out
 

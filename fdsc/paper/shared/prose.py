@@ -14,7 +14,7 @@ from numbers import Integral, Real
 import numpy as np
 
 __all__ = ["num", "count", "times", "span", "pct", "matrix_text", "glue_numbers", "reading_minutes",
-           "WORDS_PER_MINUTE", "times_ci"]
+           "WORDS_PER_MINUTE", "times_ci", "share_pct"]
 
 _SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
 
@@ -294,3 +294,24 @@ def times_ci(row) -> str:
     '×0.800 [0.790, 0.812]'
     """
     return f"{times(row['median'])} [{times(row['low'])[1:]}, {times(row['high'])[1:]}]"
+
+
+def share_pct(x) -> str:
+    """A share of the headroom as a percentage that may be negative (a loss): ``-0.04`` is
+    ``−4 %``, ``0.5`` is ``50 %``.
+
+    Parameters
+    ----------
+    x : float
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> share_pct(0.503), share_pct(-0.04)
+    ('50 %', '−4 %')
+    """
+    v = round(100 * _real(x, "x"))
+    return f"{'−' if v < 0 else ''}{abs(v)} %"
