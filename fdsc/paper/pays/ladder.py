@@ -165,7 +165,7 @@ def choose_settings(example: str, fs: FixedSet, seed: int = SEED, n: int = N_CHO
     dict
         ``{"window", "max_residual", "max_tones", "forgetting", "hysteresis", "scores"}``.
     """
-    from fdsc.paper.pays.disturbance_law_full import map_draws
+    from fdsc.paper.pays.stored_study import map_draws
 
     n = min(n, fs.n // 2)
     draws = [seeded_draw(example, i, seed)[1] for i in range(n)]
@@ -349,7 +349,7 @@ def recheck_ladder(full: dict, example: str, k: int = N_RECHECK) -> dict:
     dict
         ``{"draws", "rungs", "largest_difference"}`` (the largest relative difference of a ratio).
     """
-    from fdsc.paper.pays.disturbance_law_full import stored_fixed_set
+    from fdsc.paper.pays.stored_study import stored_fixed_set
 
     lad = full[example]["ladder"]
     fs = stored_fixed_set(full, example)
@@ -417,7 +417,7 @@ def record_part():
     -------
     RecordPart
     """
-    from fdsc.paper.pays.disturbance_law_full import load_full
+    from fdsc.paper.pays.stored_study import load_full
     from fdsc.paper.shared.results import RecordPart, entry
 
     full = load_full()

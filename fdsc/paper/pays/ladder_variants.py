@@ -151,8 +151,8 @@ def variant_study(example: str, fs: FixedSet, settings: dict, seed: int = SEED, 
     dict
         ``{variant: {"draws", "summary", "ratios"}}``.
     """
-    from fdsc.paper.pays.disturbance_law_full import map_draws
     from fdsc.paper.pays.ladder import summarize
+    from fdsc.paper.pays.stored_study import map_draws
 
     out = {}
     tuned = map_draws(variant_controllers, [(example, v, fs, seed, n_tune) for v in VARIANTS], executor)
