@@ -3,6 +3,7 @@
 import numpy as np
 
 from fdsc.paper.shared.plotting import _axes
+from fdsc.paper.shared.plotting_axes import LEGEND_FONTSIZE
 from fdsc.paper.shared.style import STYLES, band_color, style
 
 __all__ = ["STYLE", "plot_stationary_baselines", "plot_family_baselines", "plot_mc_ratio", "plot_mc_cdf"]
@@ -44,9 +45,13 @@ def plot_stationary_baselines(result, ax=None):
     return ax
 
 
-def plot_family_baselines(result, family, ax=None, *, names=None):
+def plot_family_baselines(result, family, ax=None, *, names=None, log=True, legend=True):
     """Energies of the controllers over the ρ_p family (paper Fig. 7) or the ρ_t family (Fig. 8),
     the latter with the ideal segment law.
+
+    The ideal segment law is drawn last, in black with filled markers over the other controllers'
+    open ones, so that it stays visible where it meets a curve (on the ρ_t family, the open
+    loop's).
 
     Parameters
     ----------
@@ -55,6 +60,10 @@ def plot_family_baselines(result, family, ax=None, *, names=None):
     ax : Axes, optional
     names : sequence of str, optional
         Controllers to draw (default all).
+    log : bool, optional
+        Logarithmic energy axis (a linear one tells close curves apart).
+    legend : bool, optional
+        Draw the legend inside the Axes (with several panels, draw one for the figure instead).
 
     Returns
     -------
@@ -64,14 +73,19 @@ def plot_family_baselines(result, family, ax=None, *, names=None):
     param, energy = result.energies(family)
     for k, n in enumerate(result.names if names is None else names):
         color, marker, ls = _style(n, k)
-        ax.semilogy(param, energy[n], color=color, marker=marker, ls=ls, ms=4, lw=1.2, label=n)
+        ax.plot(param, energy[n], color=color, marker=marker, ls=ls, ms=4.5, mfc="none", lw=1.2,
+                zorder=2, label=n)
     if family == "piecewise":
-        ax.semilogy(param, result.ideal_piecewise, color="k", ls="-.", lw=2.0, alpha=0.6,
-                    label="ideal segment law")
+        color, marker, ls = _style("ideal segment law", 0)
+        ax.plot(param, result.ideal_piecewise, color=color, marker=marker, ls=ls, ms=7, lw=1.6,
+                zorder=3, label="ideal segment law")
+    if log:
+        ax.set_yscale("log")
     ax.set_xlabel(r"$\rho_p$ [-]" if family == "mixed" else r"$\rho_t$ [-]")
     ax.set_ylabel(r"$\int z^\top z\,dt$ over the run [-]")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7, ncol=2)
+    if legend:
+        ax.legend(fontsize=LEGEND_FONTSIZE, ncol=2)
     return ax
 
 

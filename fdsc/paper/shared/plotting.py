@@ -9,8 +9,10 @@ import math
 
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib import patheffects
 
-from fdsc.paper.shared.plotting_axes import _axes, _outside_legend, _symlog
+from fdsc import envelope
+from fdsc.paper.shared.plotting_axes import LEGEND_FONTSIZE, _axes, _outside_legend, _symlog
 from fdsc.paper.shared.plotting_runs import (
     plot_l2_curves,
     plot_outputs,
@@ -277,9 +279,13 @@ def plot_power_vs_alpha(data, ax: plt.Axes | None = None) -> plt.Axes:
     return ax
 
 
-def plot_epf_series(data, ax: plt.Axes | None = None, *, legend: bool = True) -> plt.Axes:
+def plot_epf_series(data, ax: plt.Axes | None = None, *, legend: bool = True, bins: int = 400) -> plt.Axes:
     """Instantaneous FD-EPF (paper eq. (29)) of both law terms (min–max band per bin) and their
     running averages (paper eq. (28), thick).
+
+    The two bands overlap where both terms swing through zero, so they are told apart by their
+    fill: the LF term's band is filled, the HF term's hatched, both translucent and behind the
+    running averages, which carry a white halo.
 
     Parameters
     ----------
@@ -289,26 +295,42 @@ def plot_epf_series(data, ax: plt.Axes | None = None, *, legend: bool = True) ->
         Axes to draw on (default: a new figure).
     legend : bool, optional
         Draw a legend below the Axes (off the data); with several panels, one is enough.
+    bins : int, optional
+        Largest number of bands drawn across the run: consecutive bins of the result are merged
+        (the smallest of their minima, the largest of their maxima) until there are at most this
+        many, about one per pixel of a panel at the column width, so that a band's edge does not
+        zigzag between neighbouring bins into a solid block.
 
     Returns
     -------
     matplotlib Axes
     """
     ax = _axes(ax)
-    for kind, color in (("LF", BAND_COLORS["LF"]), ("HF", BAND_COLORS["HF"])):
-        ax.fill_between(data.t, data.P_t_lo[kind], data.P_t_hi[kind], step="post",
-                        color=color, alpha=0.3, lw=0,
-                        label=f"$P_t$, {kind} term (min–max per {data.bin * 1e3:g} ms)")
-        for edge in (data.P_t_lo[kind], data.P_t_hi[kind]):  # a smooth P_t has a thin band
-            ax.plot(data.t, edge, color=color, lw=0.4, alpha=0.6, drawstyle="steps-post")
-        ax.plot(data.t, data.P_a[kind], color=color, lw=2, label=f"running $P_a$, {kind} term")
-    ax.axhline(0, color="0.4", lw=0.8)
+    every = max(1, math.ceil((data.t.size - 1) / bins))   # t holds both ends of the run
+    halo = [patheffects.withStroke(linewidth=4.0, foreground="white")]
+    for kind, hatched in (("LF", False), ("HF", True)):
+        color = BAND_COLORS[kind]
+        t, lo, _ = envelope(data.t, data.P_t_lo[kind], every)
+        _, _, hi = envelope(data.t, data.P_t_hi[kind], every)
+        band = f"$P_t$, {kind} term (min–max per {every * data.bin:.3g} s)"
+        if hatched:
+            ax.fill_between(t, lo, hi, step="post", facecolor="none", edgecolor=color,
+                            hatch="////", lw=0, alpha=0.7, zorder=2, label=band)
+        else:
+            ax.fill_between(t, lo, hi, step="post", color=color, alpha=0.22, lw=0, zorder=1,
+                            label=band)
+        for edge in (lo, hi):  # a smooth P_t has a thin band
+            ax.plot(t, edge, color=color, lw=0.5, alpha=0.7, drawstyle="steps-post", zorder=2)
+        ax.plot(data.t, data.P_a[kind], color=color, lw=2.2, path_effects=halo, zorder=4,
+                label=f"running $P_a$, {kind} term")
+    ax.axhline(0, color="0.4", lw=0.8, zorder=3)
     _symlog(ax, "y", 1e-3)
     ax.set_xlabel("$t$ [s]")
     ax.set_ylabel("FD-EPF [-]")
-    ax.set_title(f"{data.gain} loop, {data.disturbance} disturbance", fontsize=9)
+    gain = f"$K_{{f_{data.gain[3:]}}}$" if data.gain.startswith("K_f") else data.gain
+    ax.set_title(f"{gain} loop, {data.disturbance} disturbance", fontsize=LEGEND_FONTSIZE + 1)
     if legend:
-        ax.legend(fontsize=7, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.2))
+        ax.legend(fontsize=LEGEND_FONTSIZE, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.2))
     return ax
 
 

@@ -1,7 +1,7 @@
 """Shared infrastructure, figures: the axes helpers of the plotting modules.
 
 A new Axes when none is given, a symmetric-log axis with few ticks, the legend text of a
-controller and a legend outside the Axes.
+controller and a legend outside the Axes (to their right or below them).
 """
 
 import math
@@ -10,6 +10,10 @@ import matplotlib.pyplot as plt
 from matplotlib.ticker import FixedLocator, NullLocator
 
 __all__ = []
+
+#: Legend text size [pt] of a figure drawn at the text column's width (about 7 in): at least the
+#: 8.5 pt the book asks of the text in its figures.
+LEGEND_FONTSIZE = 9
 
 
 def _symlog(ax, axis, linthresh, *, per_side=3):
@@ -43,6 +47,13 @@ def _label(name, factor=1.0):
 
 def _outside_legend(ax):
     ax.legend(fontsize=8.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
+
+
+def _below_legend(ax, ncol=2):
+    """The legend under the Axes (and under their x label), for a figure too narrow for a legend
+    beside it."""
+    ax.legend(fontsize=LEGEND_FONTSIZE, loc="upper center", bbox_to_anchor=(0.5, -0.16),
+              ncol=ncol, borderaxespad=0, frameon=False)
 
 
 def _axes(ax, figsize=(7, 4)):

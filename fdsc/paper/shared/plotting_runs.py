@@ -9,7 +9,14 @@ result and returns the Axes.
 import matplotlib.pyplot as plt
 import numpy as np
 
-from fdsc.paper.shared.plotting_axes import _axes, _label, _outside_legend, _symlog
+from fdsc.paper.shared.plotting_axes import (
+    LEGEND_FONTSIZE,
+    _axes,
+    _below_legend,
+    _label,
+    _outside_legend,
+    _symlog,
+)
 from fdsc.paper.shared.style import style
 
 __all__ = [
@@ -24,10 +31,11 @@ def plot_outputs(data, component: int, ax: plt.Axes | None = None, *, scale: dic
 
     The whole run is drawn as the min/max envelope of each bin of the decimated record (a band
     that holds every sample, so oscillations faster than the bins are not aliased into a false
-    slow wave); with ``head=True`` the start of the run is drawn sample by sample instead. Where
-    several fixed controllers are drawn, the first is drawn dashed on top of the wider later
-    ones, so that near-equal outputs both show. The legend goes above the axes, once for a
-    column of axes (on its top row).
+    slow wave); with ``head=True`` the start of the run is drawn sample by sample instead. The
+    switched loops' bands are pale, with thin translucent edges, and drawn below the fixed
+    controllers' lines. Where several fixed controllers are drawn, the first is drawn dashed on top
+    of the wider later ones, so that near-equal outputs both show. The legend goes above the axes,
+    once for a column of axes (on its top row).
 
     Parameters
     ----------
@@ -75,10 +83,13 @@ def plot_outputs(data, component: int, ax: plt.Axes | None = None, *, scale: dic
                     lw=0.9 if z == 1 else 0.8 + 0.8 * n_fixed, zorder=z, label=lab)
         else:
             lo, hi = f * data.z_lo[name][:, component], f * data.z_hi[name][:, component]
-            ax.fill_between(data.t, lo, hi, step="post", color=color, alpha=0.2 if z == 1 else 0.35,
+            # a switched loop's band is pale and its edges thin and translucent, so that its
+            # spikes do not swamp the fixed gains' lines drawn on top of it
+            ax.fill_between(data.t, lo, hi, step="post", color=color, alpha=0.12 if z == 1 else 0.35,
                             lw=0, zorder=z)
+            lw = 0.5 if z == 1 else 0.6 + 0.8 * n_fixed
             for j, edge in enumerate((lo, hi)):  # edges keep a thin band visible where lo ≈ hi
-                ax.plot(data.t, edge, color=color, ls=ls, lw=0.6 if z == 1 else 0.6 + 0.8 * n_fixed,
+                ax.plot(data.t, edge, color=color, ls=ls, lw=lw, alpha=0.55 if z == 1 else 1.0,
                         zorder=z, drawstyle="steps-post", label=None if j else lab)
     ax.set_xlabel("$t$ [s]")
     ax.set_ylabel(f"$z_{component + 1}$ = {labels[component]} [-]", fontsize=9)
@@ -89,8 +100,12 @@ def plot_outputs(data, component: int, ax: plt.Axes | None = None, *, scale: dic
         ax.set_xlabel("")
     if spec is None or spec.is_first_row():
         handles, labels_ = ax.get_legend_handles_labels()
-        ax.legend(handles, labels_, fontsize=9, loc="lower center", bbox_to_anchor=(0.5, 1.01),
-                  ncol=min(4, len(labels_)), borderaxespad=0, frameon=False)
+        leg = ax.legend(handles, labels_, fontsize=LEGEND_FONTSIZE, loc="lower center",
+                        bbox_to_anchor=(0.5, 1.01), ncol=min(4, len(labels_)), borderaxespad=0,
+                        frameon=False)
+        for h in leg.legend_handles:   # the pale bands' colours at full strength in the legend
+            h.set_alpha(1.0)
+            h.set_linewidth(max(h.get_linewidth(), 1.2))
     return ax
 
 
@@ -179,9 +194,10 @@ def plot_sweep(data, ax: plt.Axes | None = None, *, names: list | None = None, s
         Logarithmic energy axis.
     crossover : dict, optional
         ``{label: parameter value}`` drawn as vertical lines.
-    legend : {"inside", "outside", None}, optional
-        Where to put the legend (None: no legend, and no labels, for a second call on the same
-        Axes).
+    legend : {"inside", "below", "outside", None}, optional
+        Where to put the legend: inside the Axes where it covers the fewest points, below them
+        (for a figure as narrow as the text column), to their right, or nowhere (None: no
+        labels either, for a second call on the same Axes).
 
     Returns
     -------
@@ -205,8 +221,10 @@ def plot_sweep(data, ax: plt.Axes | None = None, *, names: list | None = None, s
         ax.set_yscale("log")
     if legend == "outside":
         _outside_legend(ax)
+    elif legend == "below":
+        _below_legend(ax)
     elif legend == "inside":
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=LEGEND_FONTSIZE, loc="best")
     return ax
 
 
