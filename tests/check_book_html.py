@@ -80,7 +80,8 @@ CODE_PAGES = {"own_plant.html"}
 #: page's table lists chapters by file name).
 RECORD_IDS = (
     "alpha_localized", "alpha_mixed", "bound_e", "bound_f1", "bound_f2", "bound_f3",
-    "bound_time_domain", "claims_step_halving", "eef_switching", "epf_aircraft_signs",
+    "bound_time_domain", "claims_step_halving", "closed_loop_output_matrix", "eef_switching",
+    "epf_aircraft_signs",
     "epsilon_scan_lf", "epsilon_scan_mf", "fdsc_configuration", "gamma_slip_in_band",
     "hf_best", "hf_good_in_band", "hf_l2_claims", "hf_outputs_claims",
     "hysteresis_dwell", "law_chattering", "lemma1_gamma", "lemma1_gamma_squared",
@@ -89,8 +90,8 @@ RECORD_IDS = (
     "prop1_factorizations", "prop1_short_windows", "psi_weight_sign", "remark1_crossings",
     "remark3_gap", "sigma_peak", "step_halving_hf", "step_halving_lf", "sweep_parameters",
     "sweep_step_halving", "table1_checks", "thm1_gammas",
-    "thm1_lyapunov_jumps", "thm1_mode_reference", "thm1_statement1", "thm1_statement2",
-    "thm1_statement3", "three_mode")
+    "thm1_lyapunov_jumps", "thm1_mode_reference", "thm1_statement1", "thm1_statement1_false",
+    "thm1_statement2", "thm1_statement3", "three_mode")
 #: Prose that speaks to the project: (what, pattern).
 PROJECT_SPEAK = (
     ("an issue number", re.compile(r"\bissues? #?\d+\b", re.IGNORECASE)),

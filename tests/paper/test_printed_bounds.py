@@ -59,10 +59,12 @@ def test_one_verdict_per_bound_by_the_stated_quantity(pb, entries):
     for b in pb.bounds:
         ineq = entries[BOUND_IDS[b.gain]]["inequality"]
         assert ineq["holds"] == (ineq["quantity"] < ineq["bound"]) == b.holds
-        assert (ineq["quantity"], ineq["bound"]) == (b.peak, b.paper)
+        assert (ineq["quantity"], ineq["bound"], ineq["subject"]) == (b.peak, b.paper, b.gain)
     assert "inequality fails" in pb["K_f2"].stated() and "inequality holds" in pb["K_e"].stated()
     prose = pb.prose()
     assert (prose["n_hold"], prose["hold_gains"], prose["fail_gains"]) == ("1", "K_e", "K_f1, K_f2 and K_f3")
+    # by how much each fails: K_f2 by a hair, K_f3 by a factor (the peaks of the printed gains)
+    assert prose["fail_by"] == "K_f1 ×1.09, K_f2 0.07 % above and K_f3 ×9.36"
     assert pb["K_f3"].factor > 9 and pb["K_e"].factor < 0.6
 
 

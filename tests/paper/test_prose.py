@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from fdsc.paper.shared.prose import count, num, pct, span, times
+from fdsc.paper.shared.prose import count, excess, num, pct, span, times
 
 
 @pytest.mark.parametrize(("x", "digits", "text"), [
@@ -38,6 +38,14 @@ def test_times_and_span():
     assert pct(0.04) == "4 %" and pct(1.0) == "100 %"
 
 
+def test_excess_is_a_percentage_within_one_percent_else_a_factor():
+    # the printed bounds of Sec. IV: K_f2's band peak 0.40279 against 0.4025, K_f3's 1.6051
+    # against 0.1714
+    assert excess(0.40279, 0.4025) == "0.07 % above"
+    assert excess(1.6051, 0.1714) == "×9.36"
+    assert excess(1.0101, 1.0) == "×1.01"     # 1.01 % above: a factor
+
+
 @pytest.mark.parametrize(("call", "error", "match"), [
     (lambda: num(True), TypeError, "x must be a real number"),
     (lambda: num("0.5"), TypeError, "x must be a real number"),
@@ -47,6 +55,8 @@ def test_times_and_span():
     (lambda: pct(1.2), ValueError, r"share must lie in \[0, 1\]"),
     (lambda: pct(float("nan")), ValueError, r"share must lie in \[0, 1\]"),
     (lambda: times(None), TypeError, "x must be a real number"),
+    (lambda: excess(0.3, 0.4), ValueError, "quantity must lie above a positive bound"),
+    (lambda: excess(0.3, 0.0), ValueError, "quantity must lie above a positive bound"),
 ])
 def test_bad_inputs(call, error, match):
     with pytest.raises(error, match=match):
@@ -65,7 +75,9 @@ def test_glued_text_reads_back_as_printed(monkeypatch):
     glued = {}
     monkeypatch.setattr(myst_nb, "glue", lambda name, value, display: glued.update({name: value}))
     texts = {"a": count(37493), "b": num(1.0), "c": times(0.759), "d": span(0.436, 7.0), "e": pct(0.04)}
-    assert prose.glue_numbers(texts, "p_") == [f"p_{k}" for k in texts]
+    # nothing is returned, so that a cell ending in the call shows no list of names
+    assert prose.glue_numbers(texts, "p_") is None
+    assert list(glued) == [f"p_{k}" for k in texts]
     plain = PlainTextFormatter()
     for key, text in texts.items():
         assert format_plain_text(plain(glued[f"p_{key}"]), "") == text

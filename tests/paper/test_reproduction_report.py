@@ -52,7 +52,8 @@ def record(*, claims=True):
             entry("bound_f1", "Sec. IV", 0.3443, np.float64(0.3737360687), "not reproducible",
                   "no candidate"),
             entry("bound_f2", "Sec. IV, the bound beside K_f2", 0.4025, 0.4027932507, "close", "within 1 %",
-                  inequality={"statement": "s", "quantity": 0.4027932507, "bound": 0.4025, "holds": False}),
+                  inequality={"statement": "s", "subject": "K_f2", "quantity": 0.4027932507, "bound": 0.4025,
+                              "holds": False}),
             entry("bound_e", "Sec. IV, the bound beside K_e", 0.7125, 0.4027932507, "differs", "loose",
                   inequality={"statement": "s", "quantity": 0.4027932507, "bound": 0.7125, "holds": True}),
             entry("psi", "Sec. III, proof of Proposition 1", "w >= 0 on Omega_i", {"sign_violations": 0},
@@ -136,13 +137,16 @@ def test_counts_are_over_one_kind_each():
     assert (p["n_numbers"], p["numbers_close"]) == ("4", "2")
     assert (p["n_inequalities"], p["inequalities_fail"]) == ("2", "1")
     assert p["inequalities_fail_printed"] == "0.4025"
+    # by how much each printed inequality fails: the quantity against the printed bound
+    assert p["inequalities_fail_by"] == "K_f2 0.07 % above"
     assert (p["n_steps"], p["steps_match"], p["n_claims"], p["claims_fail"]) == ("2", "1", "5", "2")
     assert counts_prose(record(claims=False))["n_claims"] == "0"
     assert counts_sentence(record()) == (
         "Of the 4 numbers the paper prints as results, 0 match ours, 2 are close (within 1 %), 1 differ "
         "and 1 cannot be reproduced; 2 are the bounds of printed inequalities, of which 1 holds and "
-        "1 fails. Checked apart: 2 proof steps, of which 1 holds as printed; 5 claims about the "
-        "simulations, of which 2 hold, 1 hold in part and 2 fail.")
+        "1 fails (the quantity against the printed bound: K_f2 0.07 % above). Checked apart: 2 "
+        "proof steps, of which 1 holds as printed; 5 claims about the simulations, of which 2 "
+        "hold, 1 hold in part and 2 fail.")
 
 
 def test_law_rows_label_the_stored_study_and_the_build_time_check():

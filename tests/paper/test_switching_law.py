@@ -54,8 +54,22 @@ def test_switching_statistics_rows_and_record(stats):
     assert "in_conflict_region" in e["recomputed"]["paper Q, measured ẋ"]
 
 
-def test_record_part_is_the_default_statistics():
-    assert [e["id"] for e in record_part().entries] == ["law_chattering"]
+def test_record_part_is_the_output_matrix_and_the_default_statistics():
+    part = record_part()
+    assert [e["id"] for e in part.entries] == ["closed_loop_output_matrix", "law_chattering"]
+    # paper eq. (32) prints C + B2 K_sigma: C (3 x 2) and B2 K (2 x 2) cannot be added, a printed
+    # expression that differs, which the report's errata list
+    from fdsc.paper.appendix.reproduction_report import PROOF_STEP, entry_kind, errata
+    from fdsc.paper.shared.data import aircraft
+
+    e = part.entries[0]
+    plant = aircraft()
+    K = np.zeros((plant.B2.shape[1], plant.A.shape[0]))
+    assert (plant.B2 @ K).shape != plant.C.shape == (plant.C + plant.D2 @ K).shape
+    assert (e["verdict"], entry_kind(e)) == ("differs", PROOF_STEP)
+    assert e["recomputed"]["C"] == list(plant.C.shape)
+    assert [r["where"] for r in errata({"entries": [e]})] == [
+        "Sec. III-B, the switched closed loop, paper eq. (32)"]
 
 
 def test_bad_piecewise_input():

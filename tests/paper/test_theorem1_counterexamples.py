@@ -79,9 +79,18 @@ def test_search_counts_and_record():
     assert gap.paper["paper", "previous", "jump", "stability"]["certified"] is False
     part = record_part()
     assert isinstance(part, RecordPart)
-    (e,) = part.entries
+    e, false = part.entries
     assert e["id"] == "theorem1_counterexamples" and e["verdict"] == "new"
     assert e["recomputed"]["counts"] == cnt
+    # statement (1) is a printed statement that the exact counterexample refutes: a proof step
+    # that differs, which the report's errata list
+    from fdsc.paper.appendix.reproduction_report import PROOF_STEP, entry_kind, errata
+    assert false["id"] == "thm1_statement1_false" and false["verdict"] == "differs"
+    assert entry_kind(false) == PROOF_STEP
+    assert false["recomputed"]["multiplier"] > 1 and false["recomputed"]["lmi_holds"]
+    assert false["recomputed"]["clean_divergent_cases"] == cnt["clean_previous"] >= 1
+    assert [r["where"] for r in errata({"entries": list(part.entries)})] == [
+        "Theorem 1, statement (1)"]
 
 
 def test_residues_bound_the_energy_weighted_excess():

@@ -7,10 +7,12 @@ from fdsc.paper.repairs.wellposed import (
     LAW_CASES,
     LAW_GRIDS,
     convergence_study,
+    dwell_conditions,
     holds_itself,
     law_study,
     region_codes,
 )
+from fdsc.paper.shared.dwell_time import dwell_certificate
 
 
 def test_region_codes_of_a_hand_made_pair():
@@ -81,3 +83,14 @@ def test_dwell_law_against_the_comparator_set():
         # the comparator set includes the paper's three gains: the best can only be better
         assert r["best fixed energy"] <= min(study.energy[(n, 0.0, r["case"])]
                                              for n in ("PassC-EF", "PassC-LF", "PassC-HF"))
+
+
+def test_the_two_dwell_conditions_are_named_apart():
+    # two sufficient conditions for the paper's two FDSC modes: the mode-wise bound τ* of this
+    # chapter, and the less conservative Geromel–Colaneri condition of the law chapter, which
+    # certifies the 10 ms dwell that the mode-wise bound does not (chapter 'wellposed_laws')
+    tau_star = dwell_certificate().bound.tau
+    short = dwell_conditions(tau_star / 100)
+    assert (short["modewise"], short["gc"]) == ("does not certify", "certifies")
+    assert short["gc_text"].startswith("every dwell time down to")
+    assert dwell_conditions(2 * tau_star)["modewise"] == "certifies"

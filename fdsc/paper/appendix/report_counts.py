@@ -2,8 +2,9 @@
 book quotes, each over one kind.
 
 A record entry beside a printed value is one of three kinds (:func:`entry_kind`): a **printed
-number** (a number or a matrix the paper prints as a result), a **proof step** (a step of a proof
-or a statement of a lemma, proposition, table or remark, printed as words and checked numerically)
+number** (a number or a matrix the paper prints as a result), a **proof step** (a step of a proof,
+a statement of a lemma, proposition, theorem, table or remark, or an expression the paper prints,
+given as words and checked numerically)
 or **sentences** on a paper figure (decided one by one in the claims checklist). The counts of
 printed numbers have two axes (:func:`printed_counts`): the verdict of the value (match, close,
 differs, not reproducible) and, for a printed inequality, whether it holds; proof steps, sentences
@@ -16,8 +17,9 @@ from numbers import Real
 
 import numpy as np
 
+from fdsc.paper.appendix.report_values import words
 from fdsc.paper.record import figure_status
-from fdsc.paper.shared.prose import count
+from fdsc.paper.shared.prose import count, excess
 from fdsc.paper.shared.verdict import CLAIM_VERDICTS, VERDICTS
 
 __all__ = [
@@ -127,7 +129,8 @@ def entry_kind(entry):
         :data:`INPUT` (verdict ``input``), :data:`FINDING` (verdict ``new``), :data:`NUMBER` (the
         printed value is a number or an array of numbers), :data:`SENTENCES` (words whose source
         names a paper figure: the paper's sentences on its simulations) or :data:`PROOF_STEP`
-        (any other words: a step of a proof, a statement of a lemma, proposition, table or remark).
+        (any other words: a step of a proof, a statement of a lemma, proposition, theorem, table or
+        remark, or an expression the paper prints).
 
     Examples
     --------
@@ -204,7 +207,9 @@ def printed_counts(record):
         ``numbers``: ``{verdict: count}`` of the printed numbers over :data:`COMPARED`;
         ``inequalities``: ``{"hold": n, "fail": n}`` of the printed numbers that are the bound of
         a printed inequality (an entry's ``inequality``), and ``fail_printed``: their printed
-        values where the inequality fails; ``proof_steps``: ``{verdict: count}``; ``sentences``:
+        values where the inequality fails; ``fail_by``: for each of those, what it bounds (the
+        inequality's ``subject``, else the entry's source) and how far the quantity lies above
+        it (:func:`fdsc.paper.shared.prose.excess`); ``proof_steps``: ``{verdict: count}``; ``sentences``:
         the entries of sentences on figures; ``claims``: ``{verdict: count}`` of the checklist
         (None without one); ``inputs``, ``findings``.
 
@@ -219,6 +224,8 @@ def printed_counts(record):
     >>> c = printed_counts(rec)
     >>> c["numbers"]["close"], c["numbers"]["differs"], c["inequalities"], c["fail_printed"]
     (1, 1, {'hold': 1, 'fail': 1}, [0.4025])
+    >>> c["fail_by"]
+    [('Sec. IV', '0.07 % above')]
     >>> c["proof_steps"]["match"], c["claims"]
     (1, None)
     """
@@ -231,6 +238,9 @@ def printed_counts(record):
             "inequalities": {"hold": sum(bool(e["inequality"]["holds"]) for e in ineq),
                              "fail": sum(not e["inequality"]["holds"] for e in ineq)},
             "fail_printed": [e["paper"] for e in ineq if not e["inequality"]["holds"]],
+            "fail_by": [(e["inequality"].get("subject") or words(e["source"]),
+                         excess(e["inequality"]["quantity"], e["inequality"]["bound"]))
+                        for e in ineq if not e["inequality"]["holds"]],
             "proof_steps": {v: sum(e["verdict"] == v for e in steps) for v in COMPARED},
             "sentences": sum(k == SENTENCES for k, _ in kind),
             "claims": None if claims is None else {v: sum(c["verdict"] == v for c in claims)
@@ -258,7 +268,9 @@ def counts_prose(record):
     dict
         ``{name: text}``: ``n_numbers`` and ``numbers_match``, ``numbers_close``,
         ``numbers_differ``, ``numbers_not_reproducible``; ``n_inequalities``,
-        ``inequalities_hold``, ``inequalities_fail``, ``inequalities_fail_printed``; ``n_steps``
+        ``inequalities_hold``, ``inequalities_fail``, ``inequalities_fail_printed``,
+        ``inequalities_fail_by`` (what each failing inequality bounds and by how much its
+        quantity exceeds the printed bound, e.g. "K_f1 ×1.09, K_f2 0.07 % above"); ``n_steps``
         and ``steps_match``, ``steps_close``, ``steps_differ``, ``steps_not_reproducible``;
         ``n_sentences``; ``n_claims``, ``claims_pass``, ``claims_partly``, ``claims_fail`` (``0``
         without a checklist); ``n_inputs``, ``n_findings``.
@@ -276,6 +288,7 @@ def counts_prose(record):
     out = {"n_numbers": count(sum(n.values())), "n_inequalities": count(sum(ineq.values())),
            "inequalities_hold": count(ineq["hold"]), "inequalities_fail": count(ineq["fail"]),
            "inequalities_fail_printed": _and(c["fail_printed"]),
+           "inequalities_fail_by": _and([f"{what} {by}" for what, by in c["fail_by"]]),
            "n_steps": count(sum(s.values())), "n_sentences": count(c["sentences"]),
            "n_claims": count(sum(claims.values())), "claims_pass": count(claims["PASS"]),
            "claims_partly": count(claims["PARTLY"]), "claims_fail": count(claims["FAIL"]),
@@ -311,8 +324,9 @@ def counts_sentence(record):
     ...     {"id": "p", "verdict": "match", "paper": "w >= 0", "source": "proof"}]}
     >>> print(counts_sentence(rec))  # doctest: +NORMALIZE_WHITESPACE
     Of the 1 number the paper prints as a result, 0 match ours, 1 is close (within 1 %), 0 differ
-    and 0 cannot be reproduced; it is the bound of a printed inequality, which fails. Checked
-    apart: 1 proof step, of which 1 holds as printed.
+    and 0 cannot be reproduced; it is the bound of a printed inequality, which fails (the quantity
+    against the printed bound: Sec. IV 0.07 % above). Checked apart: 1 proof step, of which 1
+    holds as printed.
     """
     c = printed_counts(record)
     n, ineq, steps = c["numbers"], c["inequalities"], c["proof_steps"]
@@ -321,11 +335,14 @@ def counts_sentence(record):
     text = (f"Of the {what}, "
             f"{count(n['match'])} match ours, {_n(n['close'], 'is', 'are')} close (within 1 %), "
             f"{count(n['differs'])} differ and {count(n['not reproducible'])} cannot be reproduced")
+    by = _and([f"{what} {amount}" for what, amount in c["fail_by"]])
+    by = f" (the quantity against the printed bound: {by})" if c["fail_by"] else ""
     if n_ineq == 1:
         text += f"; it is the bound of a printed inequality, which {'holds' if ineq['hold'] else 'fails'}"
     elif n_ineq:
         text += (f"; {count(n_ineq)} are the bounds of printed inequalities, of which "
                  f"{_n(ineq['hold'], 'holds', 'hold')} and {_n(ineq['fail'], 'fails', 'fail')}")
+    text += by
     text += f". Checked apart: {_n(n_steps, 'proof step', 'proof steps')}, of which "
     text += f"{_n(steps['match'], 'holds', 'hold')} as printed"
     if c["claims"] is not None:

@@ -4,7 +4,8 @@ A record value is a number, a matrix, a list or a nested dict; the report never 
 dictionary. :func:`value_html` prints a number with its digits, a matrix as a bracketed grid, a
 list of sentences as a list and a dict as a list of labelled items (keys in words), and folds a
 long value in an HTML ``<details>`` element; :func:`note_html` shows a note's first sentence and
-folds the rest; :func:`words` writes the ASCII names of Greek letters and ``<=`` as symbols.
+folds the rest; :func:`words` writes the ASCII names of Greek letters, ``<=`` and a few other
+ASCII spellings (``H-infinity``, ``xdot``) as symbols.
 Every function returns trusted HTML: each part is escaped.
 """
 
@@ -29,7 +30,8 @@ NOTE_SHOWN = 160
 
 
 def words(text):
-    """Text with the ASCII names of Greek letters as letters and ``<=``, ``>=`` as ``≤``, ``≥``.
+    """Text with the ASCII names of Greek letters as letters, ``<=``, ``>=`` as ``≤``, ``≥``,
+    ``H-infinity`` as ``H∞`` and ``xdot`` as ``ẋ``.
 
     Parameters
     ----------
@@ -44,9 +46,12 @@ def words(text):
     --------
     >>> words("rho_p <= 0.2 and the 2 delta_E output; Lemma 1's gamma")
     "ρ_p ≤ 0.2 and the 2δ_E output; Lemma 1's γ"
+    >>> words("the H-infinity gain, the measured xdot")
+    'the H∞ gain, the measured ẋ'
     """
     text = _GREEK_NAME.sub(lambda m: _GREEK[m.group(1)], str(text))
     text = re.sub(r"(\d) ([δ])", r"\1\2", text)
+    text = re.sub(r"(?<![A-Za-z])xdot(?![A-Za-z])", "ẋ", text.replace("H-infinity", "H∞"))
     return text.replace("<=", "≤").replace(">=", "≥")
 
 

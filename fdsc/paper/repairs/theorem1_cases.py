@@ -102,7 +102,7 @@ class SearchCase:
         ``"feasible"``, ``"infeasible"`` (no Q's / the given Q's fail), ``"not Hurwitz"``
         (refused by Theorem 1 up front) or ``"solver"`` (numerical failure).
     gammas : (2,) ndarray
-        γ's of the certificate (NaN unless feasible).
+        The least γ's for which Theorem 1's LMIs are feasible (NaN unless feasible).
     Ps : list of (n, n) ndarray or None
         P^s_i of (T1-1) (None unless feasible).
     """
@@ -174,7 +174,7 @@ def _aircraft_modes(rng):
 
 
 def search_case(family: str, seed: int) -> SearchCase:
-    """Build one case of the search from its family and seed, and certify it by Theorem 1.
+    """Build one case of the search from its family and seed, and solve Theorem 1's LMIs for it.
 
     Parameters
     ----------
@@ -193,7 +193,8 @@ def search_case(family: str, seed: int) -> SearchCase:
     Random families draw LF and HF edges ϖ_l = 10^U(−1, 1), ϖ_h = ϖ_l·10^U(0, 1.5); the aircraft
     uses the paper's ranges. Half the cases (by a draw) get Q's by paper Remark 4 (γ_tol =
     :data:`fdsc.switching.DEFAULT_GAMMA_TOL`, a random in-band mode), the others random SPD Q's
-    (condition up to 10³, relative scale 10^U(−3, 3)) certified by :func:`fdsc.certify_q`.
+    (condition up to 10³, relative scale 10^U(−3, 3)) for which :func:`fdsc.certify_q` finds
+    Theorem 1's LMIs feasible.
 
     Examples
     --------

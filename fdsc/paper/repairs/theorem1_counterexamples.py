@@ -46,6 +46,7 @@ from fdsc.paper.repairs.theorem1_search import (
     smallest_table,
 )
 from fdsc.paper.repairs.theorem1_witness import LMIWitness, QScaling, lmi_witness, q_scaling
+from fdsc.paper.shared.prose import count, num
 from fdsc.paper.shared.results import RecordPart, entry
 
 __all__ = [
@@ -74,6 +75,7 @@ __all__ = [
     "ExactTurn",
     "exact_turn",
     "exact_applies",
+    "STATEMENT1",
     "record_part",
 ]
 
@@ -83,8 +85,16 @@ def _samples(n):
     return "no sample" if n == 0 else "one sample" if n == 1 else f"{n} samples"
 
 
+#: Statement (1) of Theorem 1 with its hypotheses, as printed (paper eqs. (31)–(34)), in words.
+STATEMENT1 = ("if the LMIs (paper eqs. (33), (34)) hold and no sliding motion occurs, the autonomous "
+              "switched loop (paper eq. (32)) with d = 0 is asymptotically stable under the "
+              "switching law (paper eq. (31)): x(t) → 0 for any initial condition")
+
+
 def record_part() -> RecordPart:
-    """Record entry ``theorem1_counterexamples`` (new).
+    """Record entries ``theorem1_counterexamples`` (new: the search, the gap-closing conditions
+    and the residues) and ``thm1_statement1_false`` (a statement that differs: the exact
+    counterexample to statement (1)).
 
     Returns
     -------
@@ -135,14 +145,14 @@ def record_part() -> RecordPart:
         "theorem1_counterexamples", "Theorem 1, statements (1)-(3), paper eqs. (33)-(37)", None,
         rec, "new",
         "Theorem 1's LMIs hold for every pair of Hurwitz modes and every Q (P = t L with "
-        "A'L + LA = -I, t and gamma large; checked by eigenvalues on the smallest case). "
+        "AᵀL + LA = −I, t and γ large; checked by eigenvalues on the smallest case). "
         f"Seeded search with d = 0: {cnt['tried']} cases, {cnt['feasible']} with Theorem 1 "
         f"feasible (Hurwitz modes only), {cnt['diverging_previous']} diverging under the printed "
-        f"law (measured xdot): {cnt['clean_previous']} of them clean and {cnt['sliding_previous']} "
+        f"law (measured ẋ): {cnt['clean_previous']} of them clean and {cnt['sliding_previous']} "
         "sliding (decided by the exact return map in 2 states), and "
-        f"{cnt['diverging_candidate']} under the candidate xdot (each confirmed on a {REFINE}x "
+        f"{cnt['diverging_candidate']} under the candidate ẋ (each confirmed on a {REFINE} times "
         f"finer grid). Exact return map of the clean case "
-        f"{xo.family}/{xo.seed}: no switch slides, |x| grows by {turn.multiplier:.4g} per turn "
+        f"{xo.family}/{xo.seed}: no switch slides, ‖x‖ grows by {turn.multiplier:.4g} per turn "
         f"({turn.period:.4g} s) with Theorem 1's LMIs holding. Scaling both Q's of the smallest "
         f"divergent run by " + " or ".join(f"{f:.4g}" for f in Q_SCALING_FACTORS) + " changes its "
         f"switching signal at {_samples(max(q['mismatches'] for q in rec['q_scaling_smallest']))}. Every "
@@ -150,4 +160,17 @@ def record_part() -> RecordPart:
         "V, the law's switch-in "
         f"set) certifies {gs['divergent_certified']} of the {gs['divergent']} divergent runs and "
         f"{gs['convergent_certified']} of {gs['convergent_sampled']} sampled convergent ones; "
-        "epsilon_T, epsilon_inf measured from the jumps of x'P_sigma x."),))
+        "ε_T, ε_∞ measured from the jumps of xᵀP_σ x."), entry(
+        "thm1_statement1_false", "Theorem 1, statement (1)", STATEMENT1,
+        {k: rec["exact"][k] for k in ("family", "seed", "law", "multiplier", "period", "clean",
+                                      "lmi_holds", "gammas")}
+        | {"clean_divergent_cases": cnt["clean_previous"], "feasible_cases": cnt["feasible"]},
+        "differs",
+        f"False: for two 2-state Hurwitz modes (family {xo.family}, seed {xo.seed} of the seeded "
+        "search) whose Q's satisfy Theorem 1's LMIs, no switch of the printed law slides, and the "
+        f"norm of every run that switches grows by a factor {num(turn.multiplier)} per turn of "
+        f"{num(turn.period)} s (the exact return map, a product of matrix exponentials: no "
+        f"sampling, horizon or tolerance). The search finds {count(cnt['clean_previous'])} such "
+        f"clean divergent cases among {count(cnt['feasible'])} with the LMIs feasible; the LMIs "
+        "hold for every pair of Hurwitz modes and every Q's, so they exclude nothing. Computed in "
+        "the chapter “Theorem 1 put to the test”.")))

@@ -4,7 +4,8 @@ disturbances with middle-frequency content.
 
 The printed MF score ``[ẋ; x]ᵀ(Re Ψ_MF ⊗ Q)[ẋ; x] = −ẋᵀQẋ − ϖ₁ϖ₂xᵀQx`` is negative at every
 instant; the second-order score of :mod:`fdsc.scores` has the weight ``−(ω² − ϖ₁²)(ω² − ϖ₂²)``,
-positive exactly inside Ω_2, and needs ẍ. The certificate is that of :mod:`fdsc.three_mode`.
+positive exactly inside Ω_2, and needs ẍ. Theorem 1's LMIs for three modes are those of
+:mod:`fdsc.three_mode`.
 """
 
 from dataclasses import dataclass
@@ -175,7 +176,8 @@ def score_weights(omega=None) -> ScoreWeights:
 
 @dataclass(frozen=True)
 class ThreeModeCertificates:
-    """The certificates of the three-mode laws ((T1-1'), (T1-2') of :mod:`fdsc.three_mode`).
+    """The least γ's for which the LMIs (T1-1'), (T1-2') of :mod:`fdsc.three_mode` (Theorem 1 for
+    three modes) are feasible, for the three-mode laws.
 
     Parameters
     ----------
@@ -183,9 +185,9 @@ class ThreeModeCertificates:
         Remark 4 design: LF and HF scores printed, MF second-order, in-band mode K_f2,
         γ_j = γ_tol, η_k ≤ 1, objective γ_2² + ϖ_2²η_2².
     equal_q : ScoreCertificate
-        Certificate of the second-order law with Q_k = I.
+        The LMIs' solution for the second-order law with Q_k = I.
     equal_q_scaled : ScoreCertificate
-        The same law with Q_k = 10⁻⁴ I (the law is the same; the certificate is not).
+        The same law with Q_k = 10⁻⁴ I (the law is the same; the feasible γ's are not).
     mf_peak : float
         Peak of σ_max of the K_f2 loop over Ω_2 (Lemma 1 bound of the mode alone).
     """
@@ -217,7 +219,7 @@ class ThreeModeCertificates:
 
 @cached
 def three_mode_certificates() -> ThreeModeCertificates:
-    """Certify the three-mode laws on the aircraft (paper Sec. IV gains).
+    """Solve Theorem 1's LMIs for the three-mode laws on the aircraft (paper Sec. IV gains).
 
     Returns
     -------
@@ -581,10 +583,11 @@ def record_part() -> RecordPart:
         f"Ω₂ = [{num(three_bands()[1].lower, 1)}, {num(three_bands()[1].upper, 1)}] rad/s, at the cost "
         "of measuring or estimating ẍ. With all three scores second-order and Q = I the three-mode "
         f"FDSC reaches energy ratios up to {num(worst3)} on MF tones where the two-mode FDSC "
-        f"reaches at best {num(best2)}. The Remark 4 design certifies γ_MF = "
-        f"{num(float(cert.design.gammas[1]), 4)} (K_f2's MF peak {num(cert.mf_peak, 4)}) but its law "
-        "sits in the HF mode most of the time; the certificate of the Q = I law is loose "
-        f"(γ = {', '.join(num(float(g)) for g in cert.equal_q.gammas)}).")
+        f"reaches at best {num(best2)}. Theorem 1's LMIs extended to three modes are feasible "
+        f"down to γ_MF = {num(float(cert.design.gammas[1]), 4)} with the Remark 4 design (K_f2's "
+        "MF peak " f"{num(cert.mf_peak, 4)}), but its law sits in the HF mode most of the time; "
+        "with Q = I they are feasible only for loose γ's "
+        f"({', '.join(num(float(g)) for g in cert.equal_q.gammas)}).")
     return RecordPart((entry("three_mode", "Theorem 1 with I = 3 (K_f1, K_f2, K_f3), Sec. III-IV "
                              "(not in the paper)", None, rec, "new", note,
                              horizon=table.horizon, dt=table.dt),))

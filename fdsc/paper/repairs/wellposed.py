@@ -20,6 +20,7 @@
 
 import numpy as np
 
+from fdsc.paper.pays.disturbance_law_draws import certificate as geromel_colaneri_certificate
 from fdsc.paper.repairs.wellposed_regions import (
     D_REF as D_REF,  # imported from here by the chapter's notebook
 )
@@ -47,6 +48,7 @@ from fdsc.paper.repairs.wellposed_rules import (
     law_study,
 )
 from fdsc.paper.shared.dwell_time import dwell_certificate
+from fdsc.paper.shared.prose import num
 from fdsc.paper.shared.results import RecordPart, entry
 
 __all__ = [
@@ -68,6 +70,7 @@ __all__ = [
     "against_comparators",
     "comparator_table",
     "LAW_TITLES",
+    "dwell_conditions",
     "record_part",
 ]
 
@@ -111,6 +114,40 @@ def _reference_record(study):
     return {name: {c: study.energy[(name, 0.0, c)] for c in LAW_CASES} for name in ("printed", *_FIXED)} | {
         "printed_switches": {c: study.switches[("printed", 0.0, c)] for c in LAW_CASES},
         "printed_switches_half_dt": {c: study.switches_half[("printed", 0.0, c)] for c in LAW_CASES}}
+
+
+def dwell_conditions(tau_d: float) -> dict:
+    """Whether the two sufficient dwell-time conditions the book computes for the paper's two FDSC
+    modes (the closed loops of K_f1 and K_f3, d = 0) certify a dwell τ_d, in words.
+
+    The mode-wise bound τ* = ln μ / (2λ) of :func:`fdsc.paper.shared.dwell_time.dwell_certificate`
+    (this chapter) and the Geromel–Colaneri condition of
+    :func:`fdsc.paper.pays.disturbance_law_draws.certificate` (chapter 'disturbance_law'), which is less
+    conservative: a dwell one of them does not certify, the other may.
+
+    Parameters
+    ----------
+    tau_d : float
+        The dwell time in s.
+
+    Returns
+    -------
+    dict of str
+        ``modewise`` ("certifies" or "does not certify" τ_d), ``gc`` (the same for the
+        Geromel–Colaneri condition) and ``gc_text`` (what that condition certifies for the two
+        modes: "every dwell time down to … s, the least its search tries", "every dwell time from
+        … s on" or "no dwell time up to 10⁴ s").
+    """
+    tau_star = dwell_certificate().bound.tau
+    gc = geromel_colaneri_certificate("aircraft")
+    if gc is None:
+        gc_text, gc_ok = "no dwell time up to 10⁴ s", False
+    else:
+        gc_ok = tau_d >= gc.tau
+        gc_text = (f"every dwell time down to {num(gc.tau)} s, the least its search tries"
+                   if gc.bracket[0] == 0.0 else f"every dwell time from {num(gc.tau)} s on")
+    verb = {True: "certifies", False: "does not certify"}
+    return {"modewise": verb[tau_d > tau_star], "gc": verb[gc_ok], "gc_text": gc_text}
 
 
 def record_part() -> RecordPart:

@@ -205,7 +205,7 @@ def sweep_claims(study: SweepStudy, *, half: bool = False) -> list:
     rows = []
     peak_hf = float(e["PassC-HF"].max())
     rows.append(ClaimRow(
-        "the energy of PassC-HF has reached 10^6", src7,
+        "the energy of PassC-HF has reached 10⁶", src7,
         "largest ∫zᵀz of PassC-HF over the ρ_p grid; PASS if in [1e6, 1e7)", peak_hf,
         "PASS" if 1e6 <= peak_hf < 1e7 else "FAIL",
         f"{peak_hf:.3g} at ρ_p = {rho[np.argmax(e['PassC-HF'])]:g}; it passes 1e6 from ρ_p = "
@@ -328,9 +328,13 @@ def sweep_claims(study: SweepStudy, *, half: bool = False) -> list:
 
 def _summary_claims(sweep_rows, lf, hf, study):
     """The abstract's and the conclusion's claims, decided by the rows above and the runs."""
-    in_band = hf.energy["FDSC"] / hf.energy["PassC-HF"]
     by_claim = {r.source: r for r in sweep_rows}
     p2 = by_claim["Sec. II-C, objective (P.2)"]
+    # in band, the long-run ratio of the (P.1) row (second half of the runs): over the whole run
+    # from rest FDSC's energy is below PassC-HF's only because PassC-HF's slow pole still
+    # carries its start-up transient (chapter 'stationary'), an advantage of the horizon
+    in_band = by_claim["Sec. II-C, objective (P.1)"].value["FDSC / PassC-HF at α = 1"] ** 2
+    in_band_run = hf.energy["FDSC"] / hf.energy["PassC-HF"]
     out_ratio = lf.energy["FDSC"] / lf.energy["PassC-LF"]
     out_vs_hf = lf.energy["PassC-HF"] / lf.energy["FDSC"]
     ok_in = in_band <= 1.1
@@ -339,14 +343,19 @@ def _summary_claims(sweep_rows, lf, hf, study):
         "our FDSC scheme is capable to approximate the solid in-band performance while maintaining "
         "acceptable out-of-band performance with regard to global time horizons as well as "
         "localized time horizons", "Abstract",
-        "in band: FDSC's energy under HF over PassC-HF's (≤ 1.1); out of band: FDSC's energy under "
-        "LF over PassC-LF's (≤ 2, 'acceptable' read as within a factor 2 of the out-of-band "
-        "controller); localized: the (P.2) row; PASS if all three, PARTLY if some",
+        "in band: FDSC's long-run energy ratio under the HF tones over PassC-HF's (the square of "
+        "the (P.1) row's ratio at α = 1, over the second half of the runs, after PassC-HF's "
+        "start-up transient; ≤ 1.1, 'approximate' read as within 10 %); out of band: FDSC's "
+        "energy under LF over PassC-LF's (≤ 2, 'acceptable' read as within a factor 2 of the "
+        "out-of-band controller); localized: the (P.2) row; PASS if all three, PARTLY if some",
         {"in band: FDSC / PassC-HF": in_band, "out of band: FDSC / PassC-LF": out_ratio,
          "localized: (P.2)": p2.verdict},
         _grade(ok_in and ok_out and p2.verdict == "PASS", ok_in or ok_out or p2.verdict != "FAIL"),
-        f"in band {in_band:.3g} (holds); out of band {out_ratio:.3g} times PassC-LF's energy "
-        f"({out_vs_hf:.3g} times below PassC-HF's); localized: {p2.verdict}")]
+        f"in band {in_band:.4g} in the long run ({'holds' if ok_in else 'does not hold'}; over "
+        f"the whole run from rest {in_band_run:.3g}, an advantage of the horizon only: PassC-HF "
+        "still carries its start-up transient); out of band "
+        f"{out_ratio:.3g} times PassC-LF's energy ({out_vs_hf:.3g} times below PassC-HF's); "
+        f"localized: {p2.verdict}")]
     # every scenario of the simulation section against the comparator set (the best fixed
     # controller of each case: the open loop, the paper's three fixed gains, the best HF design),
     # and, labelled as such, among the paper's four controllers

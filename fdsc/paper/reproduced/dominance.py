@@ -80,7 +80,7 @@ class DominanceVsRho:
             "alpha_mixed", "Definition 2 on the mixed disturbance d_h + rho_p d_l of paper Fig. 7",
             None, {"rho_p": self.rho_p, "exact": self.exact, "fft": self.fft},
             "new",
-            f"dominance degree of Omega_3, exact from the mean powers (1/(1 + rho_p^2)) and by "
+            f"dominance degree of Ω_3, exact from the mean powers (1/(1 + ρ_p²)) and by "
             f"the FFT of a {self.horizon:g} s record (Hann), which agrees within "
             f"{self.max_fft_error:.1e}; at rho_p = {self.rho_p[-1]:g} the disturbance is still "
             f"HF-dominated (alpha = {self.exact[-1]:.3f}).", horizon=self.horizon, dt=self.dt),))

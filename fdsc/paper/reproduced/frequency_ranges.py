@@ -252,18 +252,17 @@ class PsiWeights:
         rng = f"±[{np.abs(self.omega).min():g}, {np.abs(self.omega).max():g}] rad/s"
         return RecordPart((entry(
             "psi_weight_sign",
-            "Sec. III, proof of Proposition 1: sign of [(jw)* 1] Psi [(jw)* 1]*",
-            "w >= 0 on Omega_i and w <= 0 outside",
+            "Sec. III, proof of Proposition 1: sign of [(jω)* 1] Ψ [(jω)* 1]*",
+            "the weight [(jω)* 1] Ψ_i [(jω)* 1]* ≥ 0 for ω in Ω_i and ≤ 0 outside",
             {"sign_violations": counts, "grid_points": int(self.omega.size),
              "mf_real_weight_max": self.mf_real_max},
             "match" if self.n_sign_violations == 0 else "differs",
-            f"weight of Psi counted on {self.omega.size} grid points over {rng}: "
-            f"{self.n_sign_violations} sign violations for LF and HF over all w and for MF over "
-            f"w >= 0 (on the mirror interval [-w_2, -w_1] the MF weight is negative: see "
-            f"the factorized weights of Proposition 1). For real signals only Re Psi counts, and the MF "
-            f"weight of Re "
-            f"Psi is -(w^2 + w_1 w_2), at most {num(self.mf_real_max, 4)} on the grid: the MF FD-EEF "
-            f"of a real signal is never positive."),))
+            f"weight of Ψ counted on {self.omega.size} grid points over {rng}: "
+            f"{self.n_sign_violations} sign violations for LF and HF over all ω and for MF over "
+            f"ω ≥ 0 (on the mirror interval [−ϖ_2, −ϖ_1] the MF weight is negative: see "
+            f"the factorized weights of Proposition 1). For real signals only Re Ψ counts, and the MF "
+            f"weight of Re Ψ is −(ω² + ϖ_1ϖ_2), at most {num(self.mf_real_max, 4)} on the grid: the "
+            f"MF FD-EEF of a real signal is never positive."),))
 
 
 def psi_weights(omega: ArrayLike | None = None) -> PsiWeights:

@@ -230,7 +230,7 @@ class GammaSquaredCheck:
         omega0 = self.tones[0].omega0
         return RecordPart((entry(
             "lemma1_gamma_squared", "Lemma 1, statement (2), paper eq. (8)",
-            "int z'z dt < gamma int d'd dt for inputs limited to Omega",
+            "∫ zᵀz dt < γ ∫ dᵀd dt for inputs limited to Ω",
             {t.gain: {"gamma": t.gamma_lf, "gamma_sq": t.gamma_sq,
                       "energy_ratio": t.simulated_ratio} for t in self.tones},
             "differs" if fails else "match",

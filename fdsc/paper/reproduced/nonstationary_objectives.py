@@ -242,7 +242,7 @@ class P1Result:
             "p1_global", "Sec. II-C, objective (P.1)", None,
             {"gamma_in": self.gamma_in, "gamma_in_printed": self.gamma_in_printed,
              "rows": self.table()}, "new",
-            "square roots of int z'z / int d^2 over the second half of 500 s runs (the "
+            "square roots of ∫zᵀz / ∫d² over the second half of 500 s runs (the "
             "infinite-horizon ratio after the start-up transient), against gamma(Omega_in, K_in), "
             "the HF band peak of the printed K_f3 loop; PassC-HF's closed-form steady state "
             "beside it."),))
@@ -364,7 +364,7 @@ class P2Result:
                                   for w in self.windows},
              "meets_gamma_tol": {n: {f"{w:g}": ok for w, ok in self.meets(n).items()}
                                  for n in SWEEP_NAMES}}, "new",
-            "square root of the largest int z'z / int d^2 over sliding windows (hop 0.1 s) of "
+            "square root of the largest ∫zᵀz / ∫d² over sliding windows (hop 0.1 s) of "
             "every run of the rho_t sweep of paper Fig. 8, against our gamma_tol (that of our Q "
             "design). (P.2) compares the unsquared ratio with gamma_tol; we compare its square "
             "root, the quantity a gamma bounds."),))

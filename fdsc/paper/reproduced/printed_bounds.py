@@ -26,7 +26,7 @@ from fdsc.paper.reproduced.passive_gains import recompute_gains
 from fdsc.paper.shared.cache import cached
 from fdsc.paper.shared.data import aircraft, paper_bands, paper_data, paper_gains
 from fdsc.paper.shared.names import GAIN_BANDS, GAIN_ORDER
-from fdsc.paper.shared.prose import count, num, pct, times
+from fdsc.paper.shared.prose import count, excess, num, pct, times
 from fdsc.paper.shared.results import RecordPart, entry, pick
 from fdsc.paper.shared.verdict import verdict
 from fdsc.plant import LTISystem
@@ -251,10 +251,10 @@ class PrintedBound:
         Returns
         -------
         dict
-            ``statement`` (in words), ``quantity`` (the band peak), ``bound`` (the printed
-            value), ``holds`` (quantity < bound), ``quantity_within_rounding`` (least and
-            largest band peak over the gains the printed digits allow) and
-            ``holds_within_rounding`` (the least below the bound).
+            ``statement`` (in words), ``subject`` (the gain it is printed for), ``quantity``
+            (the band peak), ``bound`` (the printed value), ``holds`` (quantity < bound),
+            ``quantity_within_rounding`` (least and largest band peak over the gains the printed
+            digits allow) and ``holds_within_rounding`` (the least below the bound).
 
         Examples
         --------
@@ -263,7 +263,7 @@ class PrintedBound:
         ('σ_max(G(jω), K_e) < 0.7125 for every ω in the entire range Ω_e', True)
         """
         return {"statement": f"σ_max(G(jω), {self.gain}) < {self.paper} for every ω in "
-                             f"{_BAND_WORDS[self.band]}",
+                             f"{_BAND_WORDS[self.band]}", "subject": self.gain,
                 "quantity": float(self.peak), "bound": float(self.paper), "holds": bool(self.holds),
                 "quantity_within_rounding": [float(v) for v in self.rounding],
                 "holds_within_rounding": bool(self.holds_within_rounding)}
@@ -393,7 +393,8 @@ class PrintedBounds:
             ``_within``, ``_chance``, ``_hits``, ``_omega_peak``, ``_rounding_least`` (the least
             band peak over the gains the printed digits allow); ``n_close``, ``n_differs``,
             ``n_hold``, ``n_fail`` (printed inequalities true and false for the printed gains),
-            ``hold_gains``, ``fail_gains``,
+            ``hold_gains``, ``fail_gains``, ``fail_by`` (each failing gain with how far its band
+            peak lies above the printed bound),
             ``verdicts`` (all four in one phrase), ``searched``, ``n_signals``, ``n_horizons``,
             ``horizon_first``, ``horizon_last``, ``dt_ms``, ``hit_gains``, ``hit_what``.
         """
@@ -403,6 +404,8 @@ class PrintedBounds:
                "n_fail": count(sum(not b.holds for b in self.bounds)),
                "hold_gains": _and([b.gain for b in self.bounds if b.holds]),
                "fail_gains": _and([b.gain for b in self.bounds if not b.holds]),
+               "fail_by": _and([f"{b.gain} {excess(b.peak, b.paper)}" for b in self.bounds
+                                if not b.holds]),
                "verdicts": ", ".join(f"{b.gain} ({b.paper}): {b.verdict}" for b in self.bounds),
                "searched": count(self.bounds[0].search.n_candidates),
                "n_signals": count(len(self.settings["signals"])),

@@ -18,8 +18,8 @@ __all__ = ["Factorization", "Prop1WeightCheck", "prop1_weight_check"]
 
 
 #: The factorizations as the proof of Proposition 1 prints them (between paper eqs. (23), (24)).
-_PRINTED = {"LF": "(w_l - jw)(w_l + jw) > 0", "MF": "(w - w_1)(w_2 - w) > 0",
-            "HF": "(jw - w_h)(jw + w_h) > 0"}
+_PRINTED = {"LF": "(ϖ_l − jω)(ϖ_l + jω) > 0", "MF": "(ω − ϖ_1)(ϖ_2 − ω) > 0",
+            "HF": "(jω − ϖ_h)(jω + ϖ_h) > 0"}
 
 
 def _default_grid():
@@ -173,13 +173,13 @@ class Prop1WeightCheck:
                 for k, f in self.bands.items()},
              "corrected_max_rel_diff": self.max_rel_diff_corrected},
             "differs" if fails else "match",
-            f"multiplied out, the printed LF product is w_l^2 + w^2 > 0 and the HF product "
-            f"-w^2 - w_h^2 < 0 at every w, while the weights are w_l^2 - w^2 and w^2 - w_h^2 "
+            f"multiplied out, the printed LF product is ϖ_l² + ω² > 0 and the HF product "
+            f"−ω² − ϖ_h² < 0 at every ω, while the weights are ϖ_l² − ω² and ω² − ϖ_h² "
             f"(wrong sign at {self.bands['LF'].n_wrong_sign} and {self.bands['HF'].n_wrong_sign} "
-            f"of {self.omega.size} grid points); the real factorizations (w_l - w)(w_l + w) and "
-            f"(w - w_h)(w + w_h), those of tau in the proof of Theorem 1, agree with the weight to "
+            f"of {self.omega.size} grid points); the real factorizations (ϖ_l − ω)(ϖ_l + ω) and "
+            f"(ω − ϖ_h)(ω + ϖ_h), those of τ in the proof of Theorem 1, agree with the weight to "
             f"{self.max_rel_diff_corrected:.1e} relative. The MF product is the weight itself, "
-            f"but its claim > 0 fails on the mirror interval [-w_2, -w_1] ({mf.n_claim_fails} of "
+            f"but its claim > 0 fails on the mirror interval [−ϖ_2, −ϖ_1] ({mf.n_claim_fails} of "
             f"{mf.n_in_band} in-band points)."),))
 
 

@@ -183,7 +183,7 @@ class Prop1Cases:
         windows = [c for c in self.cases if c.kind == _WINDOW]
         return RecordPart((
             entry("prop1_checks", "Sec. III, Proposition 1",
-                  "S(Omega_in) > 0 and S(Omega_out) < 0 for frequency-limited states",
+                  "S(Ω_in) > 0 and S(Ω_out) < 0 for frequency-limited states",
                   summ.counts(), "differs" if summ.failed else "match",
                   "seeded random stable systems (n = 2, 3), frequency-limited sums of sinusoids and "
                   "random positive-definite Q's. Holds for every steady state with LF/HF ranges; "

@@ -9,6 +9,7 @@ import numpy as np
 from fdsc.paper.shared.cache import cached
 from fdsc.paper.shared.data import (
     STATIONARY_DT,
+    aircraft,
     our_q,
     paper_modes,
     piecewise_disturbance,
@@ -19,6 +20,8 @@ from fdsc.simulate import SimResult, simulate, time_grid
 
 __all__ = [
     "record_part",
+    "PRINTED_OUTPUT_MATRIX",
+    "output_matrix_entry",
     "LawConflict",
     "law_conflict",
     "LawVariant",
@@ -276,11 +279,45 @@ def switching_statistics(*, T: float = 100.0, rho_t: float = 0.2, rho_p_star: fl
                                np.asarray(d.breaks), variants)
 
 
+#: The switched closed loop's output matrix as paper eq. (32) prints it.
+PRINTED_OUTPUT_MATRIX = "C_σ(t) = C + B₂K_σ(t)"
+
+
+def output_matrix_entry() -> RecordPart:
+    """Record entry ``closed_loop_output_matrix``: the printed expression C + B₂K_σ of paper
+    eq. (32), which the dimensions rule out (a printed expression that differs).
+
+    Returns
+    -------
+    RecordPart
+
+    Examples
+    --------
+    >>> (e,) = output_matrix_entry().entries
+    >>> e["verdict"], e["recomputed"]["C"], e["recomputed"]["B₂K_σ"]
+    ('differs', [3, 2], [2, 2])
+    """
+    plant = aircraft()
+    n, m = plant.B2.shape
+    p = plant.C.shape[0]
+    return RecordPart((entry(
+        "closed_loop_output_matrix", "Sec. III-B, the switched closed loop, paper eq. (32)",
+        PRINTED_OUTPUT_MATRIX, {"C": [p, n], "B₂K_σ": [n, n], "D₂K_σ": [p, n],
+                                "used": "C_σ(t) = C + D₂K_σ(t)"},
+        "differs",
+        f"The dimensions rule it out: on the aircraft C is {p} × {n} and B₂K_σ is {n} × {n} "
+        f"(B₂ is {n} × {m}), so the sum is undefined. With u = K_σ x the output z = Cx + D₁d + D₂u "
+        "is (C + D₂K_σ)x + D₁d, so C_σ = C + D₂K_σ is meant, and the book uses it throughout "
+        "(the closed loops of the chapter “The switching law” and of every chapter that "
+        "simulates FDSC)."),))
+
+
 def record_part() -> RecordPart:
-    """Record entry ``law_chattering`` (new) of the chapter.
+    """Record entries of the chapter: ``closed_loop_output_matrix`` (a printed expression that
+    differs) and ``law_chattering`` (new).
 
     Returns
     -------
     RecordPart
     """
-    return switching_statistics().to_record()
+    return output_matrix_entry() + switching_statistics().to_record()

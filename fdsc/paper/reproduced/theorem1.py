@@ -65,7 +65,7 @@ class Theorem1Row:
     Parameters
     ----------
     source : str
-        ``"paper's Q's (certified)"`` or ``"paper Remark 4 design"``.
+        ``"printed Q's"`` or ``"paper Remark 4 design"``.
     gamma_tol : float
         γ_tol of the design (NaN for the paper's Q's).
     gamma_1, gamma_2 : float
@@ -97,8 +97,9 @@ class Theorem1Table:
 
     Parameters
     ----------
-    certified : tuple of Theorem1Row
-        The paper's Q's first, then one design per γ_tol.
+    feasible : tuple of Theorem1Row
+        One row per pair of Q's with the LMIs feasible: the paper's Q's first, then one design
+        per γ_tol.
     hinf : (2,) ndarray
         H∞ norm of each mode's closed loop (PassC-LF, PassC-HF) over all frequencies.
     band_peaks : (2,) ndarray
@@ -106,7 +107,7 @@ class Theorem1Table:
         bound of the mode alone.
     """
 
-    certified: tuple
+    feasible: tuple
     hinf: np.ndarray
     band_peaks: np.ndarray
 
@@ -117,12 +118,12 @@ class Theorem1Table:
     @property
     def paper(self) -> Theorem1Row:
         """The row of the paper's Q's."""
-        return self.certified[0]
+        return self.feasible[0]
 
     @property
     def designs(self) -> tuple:
         """The rows of the paper Remark 4 design, one per γ_tol."""
-        return self.certified[1:]
+        return self.feasible[1:]
 
     def rows(self) -> list:
         """One row per pair of Q's (for :func:`fdsc.paper.shared.report.html_table`).
@@ -133,7 +134,7 @@ class Theorem1Table:
             ``source, gamma_tol, gamma_1, gamma_2, Q_1, Q_2, max_eig``.
         """
         keys = ("source", "gamma_tol", "gamma_1", "gamma_2", "Q_1", "Q_2", "max_eig")
-        return [{k: getattr(r, k) for k in keys} for r in self.certified]
+        return [{k: getattr(r, k) for k in keys} for r in self.feasible]
 
     def prose(self) -> dict:
         """The numbers the chapter quotes, formatted (:mod:`fdsc.paper.shared.prose`).
@@ -141,7 +142,8 @@ class Theorem1Table:
         Returns
         -------
         dict
-            ``{name: text}``: ``paper_g1``, ``paper_g2`` (the γ's the printed Q's certify),
+            ``{name: text}``: ``paper_g1``, ``paper_g2`` (the least γ's for which the LMIs are
+            feasible with the printed Q's),
             ``hinf_mode1``, ``hinf_mode2`` (H∞ norms of the modes), ``hf_mode2`` (PassC-HF's
             in-band peak), ``gamma_tol`` (the default γ_tol of our Q's), ``gamma_tols`` (those
             tried).
@@ -188,12 +190,11 @@ class Theorem1Table:
                    "paper_Q_gammas": [p.gamma_1, p.gamma_2], "paper_Q_gammas_above_hinf": above,
                    "design_gamma_2_range": [min(design_g2), max(design_g2)]},
                   "new",
-                  "reference gains of each FDSC loop alone: its H-infinity norm and its peak over "
-                  "its own range (the best in-band bound Lemma 1 gives). "
-                  + ("Each gamma_i the printed Q's certify exceeds the H-infinity norm of its own "
-                     "loop (no useful attenuation). " if above else "")
-                  + "The Remark 4 design attains PassC-HF's Omega_3 peak as gamma_2 for every "
-                  "gamma_tol tried."),
+                  "reference gains of each FDSC loop alone: its H∞ norm and its peak over its own "
+                  "range (the best in-band bound Lemma 1 gives). "
+                  + ("Each least γ_i for which Theorem 1's LMIs are feasible with the printed Q's "
+                     "exceeds the H∞ norm of its own loop (no useful attenuation). " if above else "")
+                  + "The Remark 4 design attains PassC-HF's Ω_3 peak as γ_2 for every γ_tol tried."),
         ))
 
 
@@ -218,7 +219,7 @@ def theorem1_table(gamma_tols: tuple = (1.0, 10.0, 100.0, 1000.0)) -> Theorem1Ta
     """
     pm = paper_modes()
     paper = certify_q(pm["modes"], pm["bands"], pm["Q"])
-    rows = [Theorem1Row("paper's Q's (certified)", np.nan, paper.gammas[0], paper.gammas[1],
+    rows = [Theorem1Row("printed Q's", np.nan, paper.gammas[0], paper.gammas[1],
                         paper.Q[0], paper.Q[1], max(paper.max_eigs.values()))]
     for gt in gamma_tols:
         r = design_q(pm["modes"], pm["bands"], 1, gamma_tol=gt)
@@ -234,11 +235,12 @@ def _q_entries(table):
     p = table.paper
     return RecordPart(tuple(entry(
         name, f"Sec. IV, {name}", sw[name]["value"], ours.Q[k], "not reproducible",
-        "the paper prints the Q's but not gamma_tol nor the Q's scale, which the Remark 4 design "
+        "the paper prints the Q's but not γ_tol nor the Q's scale, which the Remark 4 design "
         "needs (Q enters Theorem 1 only through differences); ours: Remark 4 design with "
-        f"gamma_tol = {DEFAULT_GAMMA_TOL:g} (in-band mode PassC-HF): it reaches gamma_2 = "
-        f"{ours.gammas[1]:.4f} by driving Q_1 to the margin; the printed Q's certify only "
-        f"gamma = ({num(float(p.gamma_1), 4)}, {num(float(p.gamma_2), 4)}).")
+        f"γ_tol = {DEFAULT_GAMMA_TOL:g} (in-band mode PassC-HF): it reaches γ_2 = "
+        f"{ours.gammas[1]:.4f} by driving Q_1 to the margin. With the printed Q's, Theorem 1's "
+        "LMIs are feasible only for γ's of at least "
+        f"({num(float(p.gamma_1), 4)}, {num(float(p.gamma_2), 4)}).")
         for k, name in enumerate(("Q_1", "Q_2"))))
 
 

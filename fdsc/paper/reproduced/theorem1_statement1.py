@@ -19,7 +19,7 @@ from fdsc.switching import Theorem1Result
 
 __all__ = [
     "AutonomousRuns", "LyapunovJumps", "Statement1Check", "autonomous_lyapunov_jumps",
-    "autonomous_stability", "lyapunov_jumps", "statement1",
+    "autonomous_stability", "lyapunov_jumps", "statement1", "PROOF_STATEMENT1",
 ]
 
 
@@ -76,6 +76,12 @@ class AutonomousRuns:
 
 
 _ZERO = Sinusoids([0.0], [1.0])
+
+#: The step of the proof of statement (1) that the book checks, in the paper's words (paper
+#: eqs. (37)–(40)).
+PROOF_STATEMENT1 = ("V(t) = x*(t) Pˢ_σ(t) x(t) (paper eq. (37)) has V̇ < 0 on every interval between "
+                    "two switching instants (paper eq. (40)), 'which implies that closed-loop "
+                    "switched system is asymptotically stable if no sliding motion occurs'")
 
 
 def autonomous_stability(n_initial: int = 40, *, horizon: float = 60.0, dt: float = 1e-3,
@@ -255,7 +261,8 @@ class Statement1Check:
     paper, ours : AutonomousRuns
         The autonomous runs with the paper's and with our Q's (same initial states).
     jumps : LyapunovJumps
-        The jumps of V on the runs with our Q's (whose certificate supplies P^s).
+        The jumps of V on the runs with our Q's (whose solution of Theorem 1's LMIs supplies
+        the Pˢ_i).
 
     Raises
     ------
@@ -294,28 +301,39 @@ class Statement1Check:
                 "jump_runs": count(j.n_runs), "jump_up": pct(j.frac_up)}
 
     def to_record(self) -> RecordPart:
-        """Record entries ``thm1_statement1`` and ``thm1_lyapunov_jumps`` (both new).
+        """Record entries ``thm1_statement1`` (new: statement (1) on the paper's example) and
+        ``thm1_lyapunov_jumps`` (a proof step that differs: the proof of statement (1) does not
+        cover the jumps of V at the switches).
 
         Returns
         -------
         RecordPart
         """
+        j = self.jumps
         return RecordPart((
-            entry("thm1_statement1", "Theorem 1, statement (1) (d = 0; nothing printed)", None,
+            entry("thm1_statement1", "Theorem 1, statement (1) on the paper's example (d = 0)", None,
                   {"paper_Q": self.paper.summary(), "ours": self.ours.summary(),
                    "n_runs": self.paper.n_runs, "horizon": self.paper.horizon},
                   "new",
-                  "autonomous switched loop from random initial states: every run decays (max "
-                  "final ratio ||x(T)||/||x(0)|| < 1) with the paper's Q's and with ours; a "
-                  "numerical check, not a proof."),
-            entry("thm1_lyapunov_jumps", "Theorem 1, proof of statement (1), paper eq. (37)", None,
-                  {"max_ratio": self.jumps.max_ratio, "frac_up": self.jumps.frac_up,
-                   "n_switches": self.jumps.n_switches, "n_runs": self.jumps.n_runs},
-                  "new",
-                  "V = x' P^s_sigma x at the switches of the autonomous runs with our Q's: V jumps "
-                  f"up at {100 * self.jumps.frac_up:.0f} % of the {self.jumps.n_switches} switches, by "
-                  f"up to a factor {self.jumps.max_ratio:.3g}; the printed proof does not cover the "
-                  "jumps."),
+                  "the aircraft's autonomous switched loop from random initial states: every run "
+                  "decays (largest final ratio ‖x(T)‖/‖x(0)‖ < 1) with the paper's Q's and with "
+                  "ours; a numerical check on this example, not a proof. Statement (1) itself is "
+                  "false: see its counterexample, computed in the chapter “Theorem 1 put to the "
+                  "test”."),
+            entry("thm1_lyapunov_jumps", "Theorem 1, proof of statement (1), paper eqs. (37)–(40)",
+                  PROOF_STATEMENT1,
+                  {"max_ratio": j.max_ratio, "frac_up": j.frac_up, "n_switches": j.n_switches,
+                   "n_runs": j.n_runs},
+                  "differs",
+                  "The proof does not cover the switches: V jumps wherever σ switches, since Pˢ_σ "
+                  "changes from Pˢ_i to Pˢ_j there, and the proof never compares V across a switch. "
+                  "A multiple Lyapunov function needs V not to increase at the switches (a jump "
+                  "condition), or a dwell time that absorbs the increase. On the aircraft's "
+                  f"autonomous runs with our Q's (d = 0) V jumps up at {pct(j.frac_up)} of the "
+                  f"{count(j.n_switches)} switches, by up to a factor {num(j.max_ratio)}: computed in "
+                  "the chapter “Theorem 1”. The jump condition that closes the gap, and runs whose "
+                  "V decreases between switches but diverges through its jumps, are in the chapter "
+                  "“Theorem 1 put to the test”."),
         ))
 
 

@@ -61,8 +61,9 @@ def window_ratios(run_sim: SimResult, window: float) -> np.ndarray:
     return np.array(out)
 
 
-def _certified_gammas():
-    """γ's certified for the paper's Q's and for ours: ``{"paper": (2,), "ours": (2,)}``."""
+def _feasible_gammas():
+    """The least γ's for which Theorem 1's LMIs are feasible with the paper's Q's and with ours:
+    ``{"paper": (2,), "ours": (2,)}``."""
     pm = paper_modes()
     return {"paper": np.asarray(certify_q(pm["modes"], pm["bands"], pm["Q"]).gammas),
             "ours": np.asarray(our_q().gammas)}
@@ -85,7 +86,7 @@ class WindowCheck:
     ratios : (k,) ndarray
         ∫zᵀz/∫d² over each window.
     bound : float
-        max_i γ_i² certified for these Q's.
+        max_i γ_i² of the least γ's for which the LMIs are feasible with these Q's.
     """
 
     disturbance: str
@@ -195,8 +196,8 @@ class Statement2Check:
         return RecordPart((entry(
             "thm1_statement2", "Theorem 1, statement (2), paper eq. (35) (nothing printed)", None,
             rec, "new",
-            f"FDSC from rest, {self.horizon:g} s runs, energy ratio int z'z / int d^2 over "
-            f"{self.window:g} s windows against max_i gamma_i^2 (the residue epsilon_T is not "
+            f"FDSC from rest, {self.horizon:g} s runs, energy ratio ∫zᵀz / ∫d² over "
+            f"{self.window:g} s windows against max_i γ_i² (the residue ε_T is not "
             "computable a priori and is left out).", window=self.window, horizon=self.horizon),))
 
 
@@ -223,7 +224,7 @@ def statement2(*, horizon: float = 100.0, window: float = 10.0, dt: float = 1e-3
     law's own terms and V at the window ends and is not computable a priori.
     """
     t = time_grid(horizon, dt)
-    gammas = _certified_gammas()
+    gammas = _feasible_gammas()
     cases = []
     for kind in ("LF", "HF"):
         d = paper_disturbance(kind)
@@ -248,7 +249,7 @@ class AsymptoticCheck:
     beta : (2,) ndarray
         Time share β_i of each mode.
     gammas : (2,) ndarray
-        γ_i certified for these Q's.
+        The least γ_i for which the LMIs are feasible with these Q's.
     """
 
     disturbance: str
@@ -351,8 +352,8 @@ class Statement3Check:
             "thm1_statement3", "Theorem 1, statement (3), paper eq. (36) (nothing printed)", None,
             rec, "new",
             f"FDSC from rest over {self.horizon:g} s: the energy ratio lies below "
-            f"sum_i beta_i gamma_i^2 (beta_i measured time shares) in {self.n_below} of "
-            f"{len(self.cases)} runs without the residue epsilon_inf.", horizon=self.horizon),))
+            f"Σ_i β_i γ_i² (β_i measured time shares) in {self.n_below} of "
+            f"{len(self.cases)} runs without the residue ε_∞.", horizon=self.horizon),))
 
 
 @cached
@@ -360,7 +361,8 @@ def statement3(*, horizon: float = 500.0, dt: float = 1e-3) -> Statement3Check:
     """Statement (3) of Theorem 1: the long-run energy ratio against Σ_i β_i γ_i².
 
     FDSC runs from rest under the paper's LF and HF disturbances, with the paper's and with our
-    Q's; β_i is the measured time share of mode i and γ_i the value certified for the run's Q's.
+    Q's; β_i is the measured time share of mode i and γ_i the least value for which the LMIs
+    are feasible with the run's Q's.
 
     Parameters
     ----------
@@ -376,7 +378,7 @@ def statement3(*, horizon: float = 500.0, dt: float = 1e-3) -> Statement3Check:
     Statement (3), paper eq. (36), bounds the asymptotic ratio by ``Σ_i β_i γ_i² + ε_∞``.
     """
     t = time_grid(horizon, dt)
-    gammas = _certified_gammas()
+    gammas = _feasible_gammas()
     cases = []
     for kind in ("LF", "HF"):
         d = paper_disturbance(kind)

@@ -247,7 +247,8 @@ def our_q(gamma_tol=DEFAULT_GAMMA_TOL):
     Returns
     -------
     Theorem1Result
-        The certificate; its ``Q`` are the law's weights.
+        The solution of Theorem 1's LMIs (feasible, which proves nothing on its own: see the
+        chapter 'theorem1_counterexamples'); its ``Q`` are the law's weights.
     """
     return paper_fdsc(gamma_tol=gamma_tol).certificate
 

@@ -130,7 +130,7 @@ def _bands():
     used = {kind: _band_parameters(kind, bands[kind].lower, bands[kind].upper) for kind in paper}
     crossovers = sorted({v for p in paper.values() for v in p.values()})
     e = _input("bands", "Sec. IV, paper eq. (55): Ω_1 = (-1, 1), Ω_2 = (-10, -1] ∪ [1, 10), "
-               "Ω_3 = (-∞, -10] ∪ [10, ∞), crossovers 10^0 and 10^1 rad/s", paper, used,
+               "Ω_3 = (-∞, -10] ∪ [10, ∞), crossovers 10⁰ and 10¹ rad/s", paper, used,
                "the LF, MF and HF bands built from the printed crossovers (rad/s); the limits read back "
                "from the bands the code uses")
     return {**e, "crossovers_rad_s": crossovers}

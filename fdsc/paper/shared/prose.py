@@ -13,8 +13,8 @@ from numbers import Integral, Real
 
 import numpy as np
 
-__all__ = ["num", "count", "times", "span", "pct", "matrix_text", "glue_numbers", "reading_minutes",
-           "WORDS_PER_MINUTE", "times_ci", "share_pct"]
+__all__ = ["num", "count", "times", "span", "pct", "excess", "matrix_text", "glue_numbers",
+           "reading_minutes", "WORDS_PER_MINUTE", "times_ci", "share_pct"]
 
 _SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
 
@@ -184,6 +184,40 @@ def pct(share, digits=0):
     return f"{100 * v:.{digits}f} %"
 
 
+#: Excess over a bound up to which :func:`excess` prints a percentage rather than a factor.
+EXCESS_PCT_UNDER = 0.01
+
+
+def excess(quantity, bound):
+    """How far a quantity lies above a bound: a percentage when it is within 1 % above it
+    (:data:`EXCESS_PCT_UNDER`), else the factor quantity / bound.
+
+    Parameters
+    ----------
+    quantity, bound : float
+        ``quantity > bound > 0``.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    ValueError
+        If the quantity is not above a positive bound.
+
+    Examples
+    --------
+    >>> excess(0.40279, 0.4025), excess(1.6051, 0.1714), excess(0.37374, 0.3443)
+    ('0.07 % above', '×9.36', '×1.09')
+    """
+    q, b = _real(quantity, "quantity"), _real(bound, "bound")
+    if not 0 < b < q:
+        raise ValueError(f"quantity must lie above a positive bound, but found {q!r} and {b!r}")
+    over = q / b - 1
+    return f"{pct(over, 2)} above" if over < EXCESS_PCT_UNDER else times(q / b)
+
+
 def matrix_text(m, digits=4):
     """A small matrix as the book prints it: rows separated by semicolons, entries by
     :func:`fdsc.paper.shared.prose.num` (no raw NumPy array in the book).
@@ -223,8 +257,8 @@ def glue_numbers(numbers, prefix=""):
 
     Returns
     -------
-    list of str
-        The glued names, in order.
+    None
+        Nothing, so that a cell ending in this call shows no output.
 
     Raises
     ------
@@ -233,13 +267,10 @@ def glue_numbers(numbers, prefix=""):
     """
     from myst_nb import glue  # only inside a notebook
 
-    names = []
     for key, value in numbers.items():
         if not isinstance(key, str):
             raise TypeError(f"numbers must be keyed by str, but found {type(key).__name__} {key!r}")
         glue(prefix + key, value, display=False)
-        names.append(prefix + key)
-    return names
 
 
 #: Words a reader reads per minute (the reading time the landing page states).

@@ -53,7 +53,7 @@ CLAIM_VERDICT_RULES = {
 }
 
 
-def verdict(paper, ours, decimals=4, *, after_the_fact=False):
+def verdict(paper, ours, decimals=4, *, after_the_fact=False, unprinted=()):
     """Compare a printed number (or matrix) with a recomputed one, by :data:`VERDICT_RULES`.
 
     Parameters
@@ -65,10 +65,14 @@ def verdict(paper, ours, decimals=4, *, after_the_fact=False):
     after_the_fact : bool, optional
         ``ours`` was picked as the nearest of several candidates after seeing ``paper``: it can
         be a ``match`` (equal to the printed precision) but never ``close``.
+    unprinted : sequence of str, optional
+        The parameters that the recomputation needs and the paper does not print (e.g. ``("σ",
+        "ε")`` of the HF synthesis): a value further than 1 % away is then ``not reproducible``,
+        since our choice of them, not the paper, may be what differs.
 
     Returns
     -------
-    {"match", "close", "differs"}
+    {"match", "close", "differs", "not reproducible"}
 
     Examples
     --------
@@ -76,6 +80,8 @@ def verdict(paper, ours, decimals=4, *, after_the_fact=False):
     ('match', 'close', 'differs')
     >>> verdict(0.3443, 0.3426, after_the_fact=True)
     'differs'
+    >>> verdict(0.1714, 1.605, unprinted=("σ",)), verdict(0.4025, 0.4028, unprinted=("ε",))
+    ('not reproducible', 'close')
     """
     paper, ours = np.asarray(paper, dtype=float), np.asarray(ours, dtype=float)
     if paper.shape != ours.shape:
@@ -84,7 +90,7 @@ def verdict(paper, ours, decimals=4, *, after_the_fact=False):
         return "match"
     if not after_the_fact and np.linalg.norm(paper - ours) <= VERDICT_CLOSE_RTOL * np.linalg.norm(paper):
         return "close"
-    return "differs"
+    return "not reproducible" if unprinted else "differs"
 
 
 def worst_verdict(verdicts, order=VERDICTS):
