@@ -113,6 +113,11 @@ GLOSSARY_PAGE = "glossary.html"
 REPORT_PAGE = "report.html"
 #: The landing page's summary: at most this many words from its heading to the reading paths.
 MAX_SUMMARY_WORDS = 1500
+#: The report: at most this many words of prose outside folded blocks, tables of at most
+#: MAX_TABLE_COLUMNS columns whose cells show at most MAX_CELL_CHARS characters unfolded.
+MAX_REPORT_WORDS = 5000
+MAX_TABLE_COLUMNS = 8
+MAX_CELL_CHARS = 300
 SUMMARY_END = "Reading paths"
 #: Pages whose tables list the record's ids by design.
 _ID_PAGES = {"report.html"}
@@ -378,6 +383,40 @@ def _errata_problems(root, page):
     return []
 
 
+_DETAILS = re.compile(r"<details\b.*?</details>", flags=re.S)
+_TABLE = re.compile(r"<table\b.*?</table>", flags=re.S)
+_ROW = re.compile(r"<tr\b.*?</tr>", flags=re.S)
+_CELL = re.compile(r"<t([hd])\b[^>]*>(.*?)</t\1>", flags=re.S)
+
+
+def unfolded(html):
+    """``html`` without its folded blocks (``<details>`` elements: dropdowns and toggles)."""
+    return _DETAILS.sub("", html)
+
+
+def table_problems(html):
+    """Tables of ``html`` (folded ones apart) wider than MAX_TABLE_COLUMNS columns or with a
+    cell whose unfolded visible text is longer than MAX_CELL_CHARS characters.
+
+    Returns
+    -------
+    list of str
+    """
+    out = []
+    for k, table in enumerate(_TABLE.findall(unfolded(html)), 1):
+        rows = _ROW.findall(table)
+        width = max((len(_CELL.findall(r)) for r in rows), default=0)
+        if width > MAX_TABLE_COLUMNS:
+            out.append(f"table {k} has {width} columns, at most {MAX_TABLE_COLUMNS}")
+        for r in rows:
+            for _, cell in _CELL.findall(r):
+                text = " ".join(visible_text(cell).split())
+                if len(text) > MAX_CELL_CHARS:
+                    out.append(f"table {k} has a cell of {len(text)} characters, at most "
+                               f"{MAX_CELL_CHARS}: '{text[:_CONTEXT]}…'")
+    return out
+
+
 def check(root):
     root = Path(root)
     problems = []
@@ -425,6 +464,12 @@ def check(root):
                     problems.append(f"{page.name}: the summary has {len(summary.split())} words of visible "
                                     f"text, at most {MAX_SUMMARY_WORDS}")
             problems += _errata_problems(root, page)
+        if page.name == REPORT_PAGE:
+            html = page.read_text(encoding="utf-8")
+            n = len(visible_text(unfolded(html)).split())
+            if n > MAX_REPORT_WORDS:
+                problems.append(f"{page.name}: {n} words of unfolded visible text, at most {MAX_REPORT_WORDS}")
+            problems += [f"{page.name}: {p}" for p in table_problems(html)]
         if page.name != GLOSSARY_PAGE:
             problems += [f"{page.name}: uses '{t}' without linking it to the glossary"
                          for t in unlinked_terms(page.read_text(encoding="utf-8"), c.text)]

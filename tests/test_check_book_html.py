@@ -204,3 +204,27 @@ def test_the_consistency_checks_find_their_defects(tmp_path):
             'advance</a>')
     assert unlinked_terms(page, "the fixed controller chosen in advance") == []
     assert theorem1_certified("The Q's, certified by Theorem 1's LMIs, hold.") != []
+
+
+def test_the_report_is_short_and_its_tables_narrow_unless_folded(tmp_path):
+    from check_book_html import MAX_CELL_CHARS, MAX_REPORT_WORDS, MAX_TABLE_COLUMNS, table_problems
+
+    long_cell = "x " * MAX_CELL_CHARS
+    wide = "<table><tr>" + "<td>a</td>" * (MAX_TABLE_COLUMNS + 1) + "</tr></table>"
+    tall = f"<table><tr><th>a</th><td>{long_cell}</td></tr></table>"
+    assert len(table_problems(wide)) == 1 and "columns" in table_problems(wide)[0]
+    assert len(table_problems(tall)) == 1 and "characters" in table_problems(tall)[0]
+    # folded away (a dropdown, a folded cell): not counted
+    assert table_problems(f"<details><summary>more</summary>{wide}{tall}</details>") == []
+    assert table_problems(f"<table><tr><td>short<details>{long_cell}</details></td></tr></table>") == []
+    narrow = "<table><tr>" + "<td>a</td>" * MAX_TABLE_COLUMNS + "</tr></table>"
+    assert table_problems(narrow) == []
+
+    words = "word " * (MAX_REPORT_WORDS + 1)
+    # the words, the erratum and the nine cells of the wide table
+    write(tmp_path, "report.html", f"<ol class='errata'><li>a</li></ol><p>{words}</p>{wide}")
+    found = "\n".join(check(tmp_path))
+    assert f"report.html: {MAX_REPORT_WORDS + 11} words of unfolded visible text" in found
+    assert "report.html: table 1 has 9 columns" in found
+    write(tmp_path, "report.html", f"<ol class='errata'><li>a</li></ol><details><p>{words}</p></details>")
+    assert not [p for p in check(tmp_path) if p.startswith("report.html")]
