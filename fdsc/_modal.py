@@ -133,12 +133,17 @@ class Modal:
         return e, anchors, g, xL
 
     @staticmethod
-    def gram(e, anchors, g, L):
-        """``∫₀ᴸ z zᵀ dτ`` (p, p) of z(τ) = Σ_t g_t e^{e_t (τ − anchors_t L)} (real z)."""
+    def gram(e, anchors, g, L, *, bound=False):
+        """``∫₀ᴸ z zᵀ dτ`` (p, p) of z(τ) = Σ_t g_t e^{e_t (τ − anchors_t L)} (real z); with
+        ``bound``, also ``Σ_ij |g_i|·|I_ij|·|g_j|`` ≥ its trace, the size of the terms it sums
+        (its trace has lost its digits to cancellation where it is ≲ eps times this)."""
         ee = np.asarray(e)
         Imat = pair_integrals(ee.conj(), anchors, ee, anchors, L)
-        G = g.conj().T @ Imat @ g
-        return G.real
+        G = (g.conj().T @ Imat @ g).real
+        if not bound:
+            return G
+        ag = np.abs(g)
+        return G, float(np.sum(ag * (np.abs(Imat) @ ag)))
 
 
 def tone_terms(t0, w, amp, ph):

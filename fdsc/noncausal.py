@@ -31,6 +31,7 @@ of ``G_zd(jω)`` from the range of ``G_zu(jω)``.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -38,11 +39,18 @@ from numpy.typing import ArrayLike
 
 from ._modal import Modal, tone_terms
 from ._validation import as_positive, as_vector, check_type
-from .exceptions import EnergyOverflowError
+from .decisions import _scale_exponent, _scaled
+from .exceptions import EnergyOverflowError, EnergyUnderflowWarning
 from .plant import as_plant
 from .signals import Piecewise, Sinusoids
 
 __all__ = ["LQData", "lq_data", "NoncausalLimit", "noncausal_limit", "tone_limit"]
+
+#: The largest relative residual of the Riccati equation :func:`lq_data` accepts.
+RICCATI_RTOL = 1e-8
+#: :func:`noncausal_limit` warns when the rounding of the closed-form terms it sums (eps times
+#: their size) may exceed this share of its energy.
+CANCEL_RTOL = 1e-6
 
 
 @dataclass(frozen=True)
@@ -95,8 +103,13 @@ class LQData:
         Returns
         -------
         (N, n, n_d) complex ndarray
+
+        Raises
+        ------
+        ValueError
+            If ω is not a finite real vector.
         """
-        w = np.atleast_1d(np.asarray(omega, dtype=float))
+        w = as_vector("omega", omega)
         n = self.A_c.shape[0]
         M = 1j * w[:, None, None] * np.eye(n)[None] + self.A_c.T[None]
         return -np.linalg.solve(M, np.broadcast_to(self.F, (w.size, *self.F.shape)))
@@ -117,7 +130,8 @@ def lq_data(plant) -> LQData:
     ------
     ValueError
         If D2 does not have full column rank (u is not penalized in z: the limit is not
-        finite), or the Riccati equation has no stabilizing solution.
+        finite), or the Riccati equation has no stabilizing solution or is solved inaccurately
+        (relative residual above :data:`RICCATI_RTOL`).
 
     Examples
     --------
@@ -142,13 +156,22 @@ def lq_data(plant) -> LQData:
     Pi = np.eye(C.shape[0]) - D2 @ G
     Q = C.T @ Pi @ C
     Q = 0.5 * (Q + Q.T)
+    # solved in the units u = L⁻ᵀ ũ (R = L Lᵀ), where the penalty is I: a small penalty (R near
+    # 1e-16) otherwise makes the solver return P = 0 without a word
+    Bu = B2 @ np.linalg.inv(np.linalg.cholesky(R)).T
     try:
-        P = solve_continuous_are(At, B2, Q, R)
+        P = solve_continuous_are(At, Bu, Q, np.eye(R.shape[0]))
     except (np.linalg.LinAlgError, ValueError) as exc:
         raise ValueError(f"plant: the LQ problem has no stabilizing solution ({exc})") from None
     P = 0.5 * (P + P.T)
     RiB = Ri @ B2.T
     S = B2 @ RiB
+    terms = (At.T @ P, P @ S @ P, Q)
+    res = np.linalg.norm(terms[0] + terms[0].T - terms[1] + Q)
+    if not res <= RICCATI_RTOL * sum(np.linalg.norm(t) for t in terms):
+        raise ValueError(f"plant: the Riccati equation of the LQ problem is solved inaccurately (relative "
+                         f"residual {res / max(sum(np.linalg.norm(t) for t in terms), 1e-300):.2g} > "
+                         f"{RICCATI_RTOL:g}): rescale the plant's states, controls or outputs")
     A_c = At - S @ P
     lam = np.linalg.eigvals(A_c)
     if np.max(lam.real) >= 0:
@@ -181,6 +204,8 @@ class NoncausalLimit:
     lq : LQData
     _x_terms, _xi_terms, _d_terms : tuple
         Per piece, the closed-form terms of x, ξ and d (what :meth:`trajectory` evaluates).
+    _scale : int
+        The terms are those of the run with d and x0 times 2^−_scale (see :func:`noncausal_limit`).
     """
 
     energy: float
@@ -191,6 +216,7 @@ class NoncausalLimit:
     _x_terms: tuple = field(repr=False, default=())
     _xi_terms: tuple = field(repr=False, default=())
     _d_terms: tuple = field(repr=False, default=())
+    _scale: int = field(repr=False, default=0)
 
     def trajectory(self, t: ArrayLike) -> dict:
         """The optimal trajectory at times t (closed forms, no simulation).
@@ -204,8 +230,13 @@ class NoncausalLimit:
         -------
         dict
             ``x`` (N, n), ``u`` (N, m_u), ``z`` (N, p), ``xi`` (N, n).
+
+        Raises
+        ------
+        ValueError
+            If t is not a finite real vector or leaves [0, horizon].
         """
-        t = np.atleast_1d(np.asarray(t, dtype=float))
+        t = as_vector("t", t)
         if np.any((t < 0) | (t > self.horizon)):
             raise ValueError(f"t must lie in [0, {self.horizon}]")
         k = np.clip(np.searchsorted(self.breaks, t, side="right") - 1, 0, self.piece_energies.size - 1)
@@ -224,7 +255,15 @@ class NoncausalLimit:
                     out[sel] = (ex @ g).real
         u = x @ lq.K.T + dd @ lq.K_d.T - xi @ lq.R_inv_B2T.T
         z = x @ lq.Cz.T + xi @ lq.Dz_xi.T + dd @ lq.Dz_d.T
-        return {"x": x, "u": u, "z": z, "xi": xi}
+        out = {"x": x, "u": u, "z": z, "xi": xi}
+        if self._scale:                             # back to the caller's units (states: power 1)
+            with np.errstate(over="ignore", under="ignore"):
+                out = {k: np.ldexp(v, self._scale) for k, v in out.items()}
+            for k, v in out.items():
+                if not np.all(np.isfinite(v)):
+                    raise EnergyOverflowError(f"trajectory: {k} exceeds the float range (about 1.8e308) "
+                                              "in the disturbance's units")
+        return out
 
 
 def noncausal_limit(plant, d, horizon: float, *, x0=None) -> NoncausalLimit:
@@ -257,6 +296,16 @@ def noncausal_limit(plant, d, horizon: float, *, x0=None) -> NoncausalLimit:
     EnergyOverflowError
         If the energy exceeds the float range.
 
+    Warns
+    -----
+    EnergyUnderflowWarning
+        If the energy is below the smallest normal float (the run itself is made at a scale
+        where it keeps its digits).
+    RuntimeWarning
+        If the closed-form terms it sums cancel so much that their rounding may exceed
+        :data:`CANCEL_RTOL` of the energy (a horizon short against every time scale of the loop
+        and of d); the message gives the bound.
+
     Examples
     --------
     A long single tone reaches the per-frequency bound :func:`tone_limit` (its mean power):
@@ -276,13 +325,17 @@ def noncausal_limit(plant, d, horizon: float, *, x0=None) -> NoncausalLimit:
     n = plant.n_states
     x0 = np.zeros(n) if x0 is None else as_vector("x0", x0, n)
     lq = lq_data(plant)
-    pcs = _pieces(d, H)
+    # run at a scale (a power of two, exact) where the energies keep their digits: J(2^−e d,
+    # 2^−e x0) = 2^−2e J(d, x0)
+    e_scale = _scale_exponent(x0, d)
+    x0 = np.ldexp(x0, -e_scale)
+    pcs = _pieces(_scaled(d, e_scale), H)
     back = Modal(lq.A_c.T, np.eye(n), "the LQ closed loop")
     fwd = Modal(lq.A_c, np.vstack([lq.Cz, np.eye(n)]), "the LQ closed loop")
     xi_at_H = np.zeros(n)
     for _attempt in range(2):                    # ξ(H) = 0, then the c that meets P x(H) + ξ(H) = 0
         xi_terms = _backward(back, pcs, lq, xi_at_H)
-        energies, x_terms, d_terms, xH = _forward(fwd, pcs, lq, xi_terms, x0)
+        energies, x_terms, d_terms, xH, sizes = _forward(fwd, pcs, lq, xi_terms, x0)
         if _attempt == 0:
             GH = _gramian_H(lq, H)
             c = np.linalg.solve(np.eye(n) - lq.P @ GH, -lq.P @ xH)
@@ -292,9 +345,37 @@ def noncausal_limit(plant, d, horizon: float, *, x0=None) -> NoncausalLimit:
     J = float(np.sum(energies))
     if not math.isfinite(J):
         raise EnergyOverflowError("noncausal_limit: the energy exceeds the float range (about 1.8e308)")
+    size = float(np.sum(sizes))
+    eps = np.finfo(float).eps
+    if size > 0 and not abs(J) * CANCEL_RTOL > eps * size:
+        ratio = size / abs(J) if J else math.inf
+        warnings.warn(f"noncausal_limit: the energy is a sum of closed-form terms that cancel (their size "
+                      f"is {ratio:.3g} times the energy's): its rounding error may reach {eps * ratio:.2g} "
+                      f"of it (a horizon short against every time scale of the loop and of d)",
+                      RuntimeWarning, stacklevel=2)
+    J = _in_units(J, e_scale)
+    with np.errstate(over="ignore", under="ignore"):
+        piece_energies = np.ldexp(np.asarray(energies), 2 * e_scale)
     breaks = np.array([p[0] for p in pcs] + [H])
-    return NoncausalLimit(J, H, breaks, np.asarray(energies), lq, tuple(x_terms), tuple(xi_terms),
-                          tuple(d_terms))
+    return NoncausalLimit(J, H, breaks, piece_energies, lq, tuple(x_terms),
+                          tuple(xi_terms), tuple(d_terms), e_scale)
+
+
+def _in_units(J, e):
+    """The energy J of the run scaled by 2^−e in the caller's units (2^2e J), refused above the
+    float range and warned below its normal numbers."""
+    with np.errstate(over="ignore", under="ignore"):
+        out = float(np.ldexp(J, 2 * e))
+    if not math.isfinite(out):
+        raise EnergyOverflowError("noncausal_limit: the energy exceeds the float range (about 1.8e308) "
+                                  "in the units of d and x0: scale them down")
+    tiny = np.finfo(float).tiny
+    if J != 0 and abs(out) < tiny:
+        warnings.warn(f"noncausal_limit: the energy ({out:.3g}) is below the smallest normal float (about "
+                      f"{tiny:.2g}) in the units of d and x0, where it keeps few digits or none (it was "
+                      "computed at a scale where it keeps them): scale d and x0 up for its digits",
+                      EnergyUnderflowWarning, stacklevel=3)
+    return out
 
 
 def _gramian_H(lq, H):
@@ -334,7 +415,7 @@ def _forward(fwd, pcs, lq, xi_terms, x0):
     n = lq.A_c.shape[0]
     p = lq.Cz.shape[0]
     x = np.asarray(x0, dtype=float)
-    energies, x_terms, d_terms = [], [], []
+    energies, x_terms, d_terms, sizes = [], [], [], []
     for j, (t0, t1, w, a, ph) in enumerate(pcs):
         L = t1 - t0
         sd, cd = tone_terms(t0, w, a, ph)
@@ -345,12 +426,13 @@ def _forward(fwd, pcs, lq, xi_terms, x0):
         dz = np.vstack([cd[:, None] * lq.Dz_d[:, 0][None, :], gx @ lq.Dz_xi.T])
         dout = np.hstack([dz, np.zeros((s.size, n))])
         e, an, g, xL = fwd.piece(x, s, anchor, b, dout, L)
-        G = Modal.gram(e, an, g[:, :p], L)
+        G, size = Modal.gram(e, an, g[:, :p], L, bound=True)
         energies.append(float(np.trace(G)))
+        sizes.append(size)
         x_terms.append((e, an, g[:, p:]))
         d_terms.append((sd, np.zeros(sd.size, dtype=bool), cd[:, None]))
         x = xL
-    return energies, x_terms, d_terms, x
+    return energies, x_terms, d_terms, x, sizes
 
 
 def tone_limit(plant, omega: ArrayLike) -> np.ndarray:

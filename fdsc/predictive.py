@@ -32,12 +32,15 @@ piece of d known exactly (ideal identification, no break foreseen): a reference,
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from ._modal import Modal, tone_terms
-from ._validation import as_count, as_positive, check_type
+from ._validation import as_count, as_positive, as_vector, check_type
+from .decisions import SCALE_RANGE, _scale_exponent, _scaled, _unscale
+from .exceptions import EnergyOverflowError, EnergyUnderflowWarning
 from .noncausal import lq_data
 from .plant import as_plant
 from .signals import Piecewise, Sinusoids
@@ -77,8 +80,13 @@ class ToneEstimate:
         Returns
         -------
         (N,) ndarray
+
+        Raises
+        ------
+        ValueError
+            If τ is not a finite real vector.
         """
-        tau = np.atleast_1d(np.asarray(tau, dtype=float))
+        tau = as_vector("tau", tau)
         return np.real(np.exp(1j * np.outer(tau, self.frequencies)) @ self.coefficients)
 
 
@@ -135,8 +143,8 @@ def identify_tones(samples, step: float, band, *, max_tones: int = 12, lags: int
     lags : int, optional
         Columns of the lag matrix (its row count is the rest of the window).
     rank_tol : float, optional
-        Directions of the lag covariance whose singular value is below this fraction of the
-        largest are noise.
+        Directions of the lag covariance whose singular value is below this fraction (in (0, 1))
+        of the largest are noise.
     trend : int, optional
         Degree of the polynomial fitted beside the tones (the slow part of the window).
 
@@ -148,6 +156,15 @@ def identify_tones(samples, step: float, band, *, max_tones: int = 12, lags: int
     ------
     ValueError
         If an argument is out of range or the samples are not finite.
+    EnergyOverflowError
+        If the residual's mean square exceeds the float range (samples above about 1e154).
+
+    Warns
+    -----
+    EnergyUnderflowWarning
+        If the residual's mean square is not 0 but below the smallest normal float (samples
+        below about 1e-154; the tones are identified at a scale where the samples are of order
+        one, and keep their digits).
 
     Examples
     --------
@@ -159,21 +176,45 @@ def identify_tones(samples, step: float, band, *, max_tones: int = 12, lags: int
     >>> np.round(est.frequencies, 3).tolist(), np.round(np.abs(est.coefficients), 3).tolist()
     ([30.0, 47.0], [0.7, 0.4])
     """
-    from ._validation import as_vector
-
     y = as_vector("samples", samples)
     step = as_positive("step", step)
     lo, hi = _band(band, step)
     max_tones = as_count("max_tones", max_tones, 1)
     lags = as_count("lags", lags, 3)
-    rank_tol = as_positive("rank_tol", rank_tol)
+    rank_tol = _rank_tol(rank_tol)
     trend = as_count("trend", trend, 0)
     if y.size < 2 * (trend + 1) + 8:
         raise ValueError(f"samples: at least {2 * (trend + 1) + 8} samples are needed, but found {y.size}")
+    # identified at a scale (a power of two, exact) where the lag covariance and the residual's
+    # mean square neither overflow nor underflow; the coefficients are linear in the samples
+    mag = float(np.max(np.abs(y)))
+    e = 0 if mag == 0.0 or 2.0 ** -SCALE_RANGE <= mag <= 2.0 ** SCALE_RANGE else math.frexp(mag)[1]
+    y = np.ldexp(y, -e)
     w = _esprit(y, step, lo, hi, max_tones, lags, rank_tol)
     tau = step * (np.arange(y.size) - (y.size - 1))
     c, res = _fit(tau, y, w, trend)
+    if e:
+        c = np.ldexp(c.real, e) + 1j * np.ldexp(c.imag, e)
+        with np.errstate(over="ignore", under="ignore"):
+            scaled_res, res = res, float(np.ldexp(res, 2 * e))
+        if not math.isfinite(res):
+            raise EnergyOverflowError("identify_tones: the residual's mean square exceeds the float range "
+                                      "(about 1.8e308) in the samples' units: scale the samples down")
+        tiny = np.finfo(float).tiny
+        if scaled_res != 0 and res < tiny:
+            warnings.warn(f"identify_tones: the residual's mean square ({res:.3g}) is below the smallest "
+                          f"normal float (about {tiny:.2g}) in the samples' units, where it keeps few digits "
+                          "or none (the tones, identified at scale, keep theirs): scale the samples up for "
+                          "its digits", EnergyUnderflowWarning, stacklevel=2)
     return ToneEstimate(w, c, res)
+
+
+def _rank_tol(rank_tol):
+    x = as_positive("rank_tol", rank_tol)
+    if not x < 1:
+        raise ValueError(f"rank_tol must lie in (0, 1) (a share of the largest singular value; at 1 or "
+                         f"above no direction is signal and no tone can be found), but found {x}")
+    return x
 
 
 def _band(band, step=None):
@@ -275,7 +316,7 @@ class PredictiveLaw:
                              f"{self.step:.4g} s), but found {window!r}")
         self.max_tones = as_count("max_tones", max_tones, 1)
         self.lags = as_count("lags", lags, 3)
-        self.rank_tol = as_positive("rank_tol", rank_tol)
+        self.rank_tol = _rank_tol(rank_tol)
         self.trend = as_count("trend", trend, 0)
         self.amplitude_cap = as_positive("amplitude_cap", amplitude_cap)
         self.max_residual = as_positive("max_residual", max_residual)
@@ -324,9 +365,14 @@ class PredictiveLaw:
         if estimate is not None:
             check_type("estimate", estimate, Sinusoids | Piecewise, "an fdsc.Sinusoids or fdsc.Piecewise")
         plant, n = self.plant, self.plant.n_states
-        from ._validation import as_vector
-
         x = np.zeros(n) if x0 is None else np.array(as_vector("x0", x0, n))
+        # run at a scale (a power of two, exact) where the energies and the identification's lag
+        # covariance keep their digits: the loop is linear in (x0, d, ŵ), the identification
+        # invariant to the scale, so the run takes the same decisions
+        e_scale = _scale_exponent(x, d, estimate)
+        x = np.ldexp(x, -e_scale)
+        d, estimate = _scaled(d, e_scale), _scaled(estimate, e_scale)
+        what = d if estimate is None else estimate
         Af, Ef, Cf, Ff = self._base
         x = np.r_[x, np.zeros(Af.shape[0])]                  # the base filter's states start at rest
         zk = np.zeros(Af.shape[0])
@@ -379,6 +425,9 @@ class PredictiveLaw:
             e, an, gz, x = self._modal.piece(x, s, np.zeros(s.size, dtype=bool), np.vstack(b),
                                              np.vstack(dz), L)
             energy += float(np.trace(Modal.gram(e, an, gz, L)))
+        if not math.isfinite(energy):
+            raise EnergyOverflowError("PredictiveLaw: the energy exceeds the float range (about 1.8e308)")
+        energy = _unscale(energy, e_scale, where="PredictiveLaw: ")
         return PredictiveRun(energy, H, n_id, n_tones / n_id if n_id else 0.0)
 
     def _identify(self, sampled, t):
@@ -422,6 +471,14 @@ class PredictiveLaw:
             If d or estimate is not a Sinusoids or Piecewise.
         ValueError
             If horizon or x0 is out of range.
+        EnergyOverflowError
+            If the energy exceeds the float range in the units of d.
+
+        Warns
+        -----
+        EnergyUnderflowWarning
+            If the energy is below the smallest normal float in the units of d (the run is made
+            at a scale where it keeps its digits, and its identifications stand).
         """
         return self._run(d, horizon, estimate, x0, known=False)
 

@@ -261,7 +261,16 @@ def _feedforward_poles(feedforward, plant):
     p = as_vector("feedforward", feedforward)
     if np.any(p <= 0):
         raise ValueError(f"feedforward: the filter poles must be positive (rad/s), but found {p.tolist()}")
-    return np.sort(p)
+    from .frequency import POLE_RTOL
+
+    if np.any(p <= POLE_RTOL):
+        raise ValueError(f"feedforward: the filter poles must lie above {POLE_RTOL:g} rad/s (a slower filter "
+                         f"is an integrator to the H∞ sweep's tolerance), but found {p.tolist()}")
+    p = np.sort(p)
+    if np.any(np.diff(p) <= 1e-9 * p[1:]):
+        raise ValueError(f"feedforward: the filter poles must be distinct (a repeated pole adds a state "
+                         f"with the same response), but found {p.tolist()}")
+    return p
 
 
 def _unpack(theta, structure, shape, scale):
@@ -305,7 +314,8 @@ def tune_controller(plant, disturbances, horizons, starts, *, structure: str = "
         tunes the feedforward only.
     feedforward : None, "static" or sequence of float, optional
         What the controller reads of the disturbance estimate ŵ (one disturbance input): None
-        (default) nothing; ``"static"`` a gain ``F ŵ``; a sequence of poles p > 0 (rad/s) the
+        (default) nothing; ``"static"`` a gain ``F ŵ``; a sequence of distinct poles p > 0 (rad/s,
+        above 1e-10) the
         feedforward ``F ŵ + C_w ξ`` through first-order filters ``ξ̇_i = −p_i ξ_i + ŵ`` with the
         poles fixed and every gain tuned (its gains are exact for each feedback part: see
         Notes).

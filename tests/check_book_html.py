@@ -468,7 +468,8 @@ def check(root):
             html = page.read_text(encoding="utf-8")
             n = len(visible_text(unfolded(html)).split())
             if n > MAX_REPORT_WORDS:
-                problems.append(f"{page.name}: {n} words of unfolded visible text, at most {MAX_REPORT_WORDS}")
+                problems.append(f"{page.name}: {n} words of unfolded visible text, "
+                                f"at most {MAX_REPORT_WORDS}")
             problems += [f"{page.name}: {p}" for p in table_problems(html)]
         if page.name != GLOSSARY_PAGE:
             problems += [f"{page.name}: uses '{t}' without linking it to the glossary"

@@ -155,3 +155,52 @@ def test_a_tone_on_a_pole_of_the_plant_is_refused():
                      [[1.0, 0.0], [0.0, 0.0]], [[0.0], [0.0]], [[0.0], [0.3]])
     with pytest.raises(ValueError, match=r"omega\[0\] = 2.0 lies on a pole"):
         tone_limit(undamped, [2.0])
+
+
+# --- bad and edge input: small penalties, bad times, extreme scales, horizons too short
+
+
+def test_a_small_control_penalty_gets_the_riccati_solution_not_zero():
+    # ẋ = −x + d + u, z = [x; ρu]: P = ρ²(√(1 + ρ⁻²) − 1); at ρ = 1e-8 the solver returned P = 0
+    rho = 1e-8
+    plant = Plant([[-1.0]], [[1.0]], [[1.0]], [[1.0], [0.0]], [[0.0], [0.0]], [[0.0], [rho]])
+    assert lq_data(plant).P[0, 0] == pytest.approx(rho ** 2 * (math.sqrt(1 + rho ** -2) - 1), rel=1e-9)
+    H = math.pi * 30                                     # whole periods of the tone at 2 rad/s
+    assert noncausal_limit(plant, Sinusoids([1.0], [2.0]), H).energy / H == pytest.approx(
+        0.5 * tone_limit(plant, [2.0])[0], rel=1e-6)
+
+
+@pytest.mark.parametrize("t, err, match", [
+    ([math.nan], ValueError, r"t must have finite entries"),
+    ([[1.0, 2.0]], ValueError, r"t must be a 1-D array"),
+    ("abc", ValueError, r"t must be a numeric vector"),
+])
+def test_the_trajectory_refuses_bad_times_by_name(t, err, match):
+    lim = noncausal_limit(P1, Sinusoids([1.0], [2.0]), 5.0)
+    with pytest.raises(err, match=match):
+        lim.trajectory(t)
+
+
+def test_psi_gain_refuses_a_non_finite_frequency_by_name():
+    with pytest.raises(ValueError, match=r"omega must have finite entries"):
+        lq_data(P1).psi_gain([math.nan])
+
+
+def test_a_tiny_disturbance_keeps_its_digits_and_says_its_energy_underflows():
+    from fdsc import EnergyUnderflowWarning
+
+    d = Sinusoids([1.0], [2.0])
+    ref = noncausal_limit(P1, d, 5.0)
+    with pytest.warns(EnergyUnderflowWarning, match=r"noncausal_limit: the energy"):
+        tiny = noncausal_limit(P1, d.scaled(1e-160), 5.0)
+    assert tiny.energy == pytest.approx(ref.energy * 1e-320, rel=1e-3)          # subnormal: 3 digits
+    small = noncausal_limit(P1, d.scaled(1e-100), 5.0)                            # run at scale
+    assert small.energy == pytest.approx(ref.energy * 1e-200, rel=1e-12)
+    np.testing.assert_allclose(small.trajectory([2.0])["x"], 1e-100 * ref.trajectory([2.0])["x"], rtol=1e-12)
+
+
+def test_a_horizon_too_short_for_the_closed_forms_is_said_to_lose_its_digits():
+    # over 1e-12 s every term of the closed form is about H and the energy about H³: it came out
+    # negative without a word
+    with pytest.warns(RuntimeWarning, match=r"closed-form terms that cancel"):
+        noncausal_limit(P1, Sinusoids([1.0], [2.0], [1.0]), 1e-12)

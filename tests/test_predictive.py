@@ -92,6 +92,7 @@ def test_a_noisy_estimate_costs_energy_and_the_known_tones_do_not_read_it():
     ({"window": 0.1, "step": 0.05}, r"window must hold at least 20 samples"),
     ({"update": 0.0}, r"update"),
     ({"max_tones": 0}, r"max_tones"),
+    ({"rank_tol": 1.0}, r"rank_tol must lie in \(0, 1\)"),
 ])
 def test_bad_settings_are_refused_by_name(kw, match):
     args = {"band": BAND, "step": 0.05} | kw
@@ -109,3 +110,49 @@ def test_bad_runs_and_samples_are_refused_by_name():
         identify_tones([0.0] * 20 + [math.nan], 0.01, (5.0, 100.0))
     with pytest.raises(ValueError, match=r"samples: at least"):
         identify_tones(np.ones(5), 0.01, (5.0, 100.0))
+
+
+# --- bad and edge input: a rank tolerance that finds nothing, bad times, extreme scales
+
+
+def test_identify_tones_refuses_a_rank_tolerance_that_leaves_no_signal():
+    y = np.sin(30.0 * np.arange(-400, 1) * 0.005)
+    with pytest.raises(ValueError, match=r"rank_tol must lie in \(0, 1\)"):
+        identify_tones(y, 0.005, (10.0, 200.0), rank_tol=2.0)
+
+
+def test_the_tone_estimate_refuses_non_finite_times_by_name():
+    est = identify_tones(np.sin(30.0 * np.arange(-400, 1) * 0.005), 0.005, (10.0, 200.0))
+    with pytest.raises(ValueError, match=r"tau must have finite entries"):
+        est([math.nan])
+
+
+def test_tiny_samples_give_the_same_tones_and_huge_ones_a_named_overflow():
+    from fdsc import EnergyOverflowError, EnergyUnderflowWarning
+
+    t = np.arange(-400, 1) * 0.005
+    y = np.sin(30.0 * t) + 0.5 * np.sin(47.0 * t)
+    ref = identify_tones(y, 0.005, (10.0, 200.0))
+    with pytest.warns(EnergyUnderflowWarning, match=r"residual's mean square"):
+        tiny = identify_tones(1e-160 * y, 0.005, (10.0, 200.0))        # found 5 spurious tones
+    np.testing.assert_allclose(tiny.frequencies, ref.frequencies, rtol=1e-12)
+    np.testing.assert_allclose(tiny.coefficients, 1e-160 * ref.coefficients, rtol=1e-9)
+    with pytest.raises(EnergyOverflowError, match=r"identify_tones: the residual"):
+        identify_tones(1e300 * y, 0.005, (10.0, 200.0))                # returned no tone
+
+
+def test_the_law_takes_the_same_decisions_at_any_scale_of_d():
+    from fdsc import EnergyOverflowError, EnergyUnderflowWarning
+
+    d = Sinusoids([1.0, 0.5], [3.0, 7.0])
+    law = PredictiveLaw(P2, BAND, window=3.0, step=0.05)
+    ref = law.run(d, 10.0)
+    with pytest.warns(EnergyUnderflowWarning, match=r"PredictiveLaw: the energy"):
+        tiny = law.run(d.scaled(1e-160), 10.0)                          # identified other tones
+    assert tiny.mean_tones == ref.mean_tones
+    assert tiny.energy == pytest.approx(1e-320 * ref.energy, rel=1e-3)
+    small = law.run(d.scaled(1e-100), 10.0)
+    assert small.energy == pytest.approx(1e-200 * ref.energy, rel=1e-9)
+    for run in (law.run, law.run_known):                                 # LinAlgError, NaN
+        with pytest.raises(EnergyOverflowError, match=r"PredictiveLaw: the energy exceeds"):
+            run(d.scaled(1e200), 10.0)

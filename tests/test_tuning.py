@@ -210,6 +210,8 @@ def test_a_held_feedback_part_tunes_only_the_feedforward():
     ({"feedforward": "dynamic"}, r"feedforward"),
     ({"feedforward": "static", "hinf_cap": 2.0}, r"hinf_cap applies to controllers that read x only"),
     ({"structure": "held"}, r"structure 'held' needs a feedforward"),
+    ({"feedforward": [1.0, 1.0]}, r"feedforward: the filter poles must be distinct"),
+    ({"feedforward": [1e-12]}, r"feedforward: the filter poles must lie above 1e-10"),
 ])
 def test_bad_feedforward_settings_are_refused_by_name(kw, match):
     with pytest.raises(ValueError, match=match):
