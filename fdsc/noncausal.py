@@ -436,7 +436,7 @@ def _forward(fwd, pcs, lq, xi_terms, x0):
 
 
 def tone_limit(plant, omega: ArrayLike) -> np.ndarray:
-    """The least ‖z‖²/|d|² per frequency: for ``d = Re(c e^{jωt})`` held forever, no control
+    """The least ``‖z‖²/|d|²`` per frequency: for ``d = Re(c e^{jωt})`` held forever, no control
     makes the mean of ‖z‖² less than ``|c|²/2`` times this (the squared distance of
     ``G_zd(jω)`` from the range of ``G_zu(jω)``).
 

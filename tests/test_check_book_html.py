@@ -228,3 +228,25 @@ def test_the_report_is_short_and_its_tables_narrow_unless_folded(tmp_path):
     assert "report.html: table 1 has 9 columns" in found
     write(tmp_path, "report.html", f"<ol class='errata'><li>a</li></ol><details><p>{words}</p></details>")
     assert not [p for p in check(tmp_path) if p.startswith("report.html")]
+
+
+def test_errata_count_top_level_items_and_terms_count_only_the_article(tmp_path):
+    # the report's items carry nested lists (the printed values); the landing page's list is flat
+    write(tmp_path, "report.html", "<ol class='errata'><li>a <ul class='kv'><li>LF</li><li>HF</li></ul></li>"
+                                   "<li>b</li></ol>")
+    write(tmp_path, "intro.html", "<h2>Replication summary</h2><p>Errata.</p><ol><li>a</li><li>b</li></ol>"
+                                  "<h2>Reading paths</h2>")
+    assert not [p for p in check(tmp_path) if "errata" in p]
+    write(tmp_path, "intro.html", "<h2>Replication summary</h2><p>Errata.</p><ol><li>a</li></ol>"
+                                  "<h2>Reading paths</h2>")
+    assert "intro.html: 1 errata, the report lists 2" in "\n".join(check(tmp_path))
+    # a chapter title in the navigation is not the page's use of a term; the article's is
+    nav = "<nav><a href='#ladder'>The non-causal limit and a predictive law</a></nav>"
+    write(tmp_path, "baselines.html", f"{nav}<article class='bd-article'><p>Baselines.</p></article>")
+    assert not [p for p in check(tmp_path) if p.startswith("baselines.html")]
+    write(tmp_path, "baselines.html",
+          f"{nav}<article class='bd-article'><p>the non-causal limit</p></article>")
+    assert "baselines.html: uses 'non-causal limit' without linking" in "\n".join(check(tmp_path))
+    # indices Sphinx generates list code names and terms by design
+    write(tmp_path, "genindex.html", "<p>alpha_lf_in_hf (PiecewiseDominance property) non-causal limit</p>")
+    assert not [p for p in check(tmp_path) if p.startswith("genindex.html")]

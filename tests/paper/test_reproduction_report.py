@@ -226,8 +226,10 @@ def test_without_a_checklist_the_figures_say_so():
 
 def test_claim_rows():
     rows = claim_rows(record())
-    assert len(rows) == 5 and rows[0]["claim"] == (
-        "“words on Sec. IV, text on paper Fig. 7”<br><small>Sec. IV, text on paper Fig. 7</small>")
+    assert len(rows) == 5 and rows[0]["claim"].startswith(
+        "“words on Sec. IV, text on paper Fig. 7”<br><small>Sec. IV, text on paper Fig. 7</small>"
+        "<details><summary>how it is read</summary>")
+    assert "measure" not in rows[0]
     assert (rows[0]["value"], rows[0]["verdict"], rows[0]["reason"]) == ("0.1", "PASS", "r")
     assert rows[-1]["value"] == '<ul class="kv"><li>a: 1</li></ul>'
 

@@ -316,9 +316,9 @@ def claim_rows(record):
     Returns
     -------
     list of dict
-        Trusted-HTML cells ``claim`` (the paper's words and where), ``measure`` (how they are
-        read, folded when long), ``value`` (in words, four significant digits), ``verdict`` and
-        ``reason`` (folded when long).
+        Trusted-HTML cells ``claim`` (the paper's words, where, and how they are read, folded),
+        ``value`` (in words, four significant digits), ``verdict`` and ``reason`` (folded when
+        long).
 
     Raises
     ------
@@ -332,9 +332,9 @@ def claim_rows(record):
     >>> [(r["value"], r["verdict"]) for r in claim_rows(rec)]
     [('0.04811', 'FAIL')]
     """
-    return [{"claim": f"“{html.escape(words(c['claim']))}”<br><small>{html.escape(c['source'])}</small>",
-             "measure": note_html(c["measure"]), "value": value_html(c["value"], 4),
-             "verdict": c["verdict"], "reason": note_html(c["reason"])}
+    return [{"claim": f"“{html.escape(words(c['claim']))}”<br><small>{html.escape(c['source'])}</small>"
+                      + details("how it is read", f"<p>{html.escape(words(c['measure']))}</p>"),
+             "value": value_html(c["value"], 4), "verdict": c["verdict"], "reason": note_html(c["reason"])}
             for c in claims_of(record) or []]
 
 
