@@ -83,3 +83,11 @@ def test_glued_text_reads_back_as_printed(monkeypatch):
         assert format_plain_text(plain(glued[f"p_{key}"]), "") == text
     with pytest.raises(TypeError, match="numbers must be keyed by str"):
         prose.glue_numbers({1: "x"})
+
+
+def test_a_share_short_of_whole_is_never_printed_whole():
+    from fdsc.paper.shared.prose import pct
+
+    assert pct(0.996) == "99.6 %" and pct(0.9996) == "99.96 %" and pct(0.004) == "0.4 %"
+    assert pct(1.0) == "100 %" and pct(0.0) == "0 %" and pct(0.5) == "50 %"
+    assert pct(0.99999999) == "100.000 %"        # three decimals at most: then it rounds

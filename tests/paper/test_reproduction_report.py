@@ -305,3 +305,19 @@ def test_printed_rows_link_the_page_by_its_title():
     # a long value is folded, whole, in a details element; an entry without a page has no link
     assert rows[1]["printed"].startswith("<details><summary>0, 1, 2, 3, … (40 values)")
     assert ", 39</p></details>" in rows[1]["printed"] and rows[1]["link"] == ""
+
+
+def test_the_ladder_rows_give_a_share_only_where_a_rung_takes_headroom():
+    from fdsc.paper.appendix.report_law import ladder_rows
+
+    def row(median, share):
+        return {"median": median, "low": median * 0.99, "high": median * 1.01, "win_rate": 0.5,
+                "draws": 250, "headroom_share": [share, share - 0.1, share + 0.1]}
+
+    full = {"commit": "048c47d821e7", "aircraft": {"ladder": {"summary": {
+        "predictive": row(0.92, 0.69), "FDSC": row(334.0, -46.57),
+        "best fixed (x, ŵ)": {"median": 1.0, "low": 1.0, "high": 1.0, "win_rate": 0.0, "draws": 250}}}}}
+    rows = ladder_rows(full)
+    assert sorted(r["share"] for r in rows) == ["", "69 %", "none"]
+    # the reference is not said to win on 0 % of the draws against itself
+    assert sorted(r["wins"] for r in rows) == ["50 %", "50 %", "the reference"]

@@ -9,7 +9,7 @@ recomputes the same procedure on the first few of its draws when the book is bui
 import html
 
 from fdsc.paper.appendix.report_counts import entries_of
-from fdsc.paper.shared.prose import count, pct, share_pct, times, times_ci
+from fdsc.paper.shared.prose import count, headroom_pct, pct, times, times_ci
 
 __all__ = ["LAW_ENTRY", "law_rows", "ladder_rows"]
 
@@ -101,7 +101,7 @@ def ladder_rows(full):
     >>> [(r["rung"], r["median"]) for r in ladder_rows(full)]
     [('non-causal limit (knows the whole draw)', '×0.800 [0.790, 0.810]')]
     """
-    from fdsc.paper.pays.ladder import RUNG_WORDS, RUNGS
+    from fdsc.paper.pays.ladder import REFERENCE, RUNG_WORDS, RUNGS
 
     rows = []
     for example in _LAW_EXAMPLES:
@@ -115,5 +115,6 @@ def ladder_rows(full):
             share = s.get("headroom_share")
             rows.append({"example": _LAW_EXAMPLES[example], "rung": html.escape(RUNG_WORDS[rung]),
                          "median": times_ci(s),
-                         "wins": pct(s["win_rate"]), "share": share_pct(share[0]) if share else ""})
+                         "wins": "the reference" if rung == REFERENCE else pct(s["win_rate"]),
+                         "share": headroom_pct(share[0]) if share else ""})
     return rows

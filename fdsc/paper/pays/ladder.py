@@ -58,6 +58,8 @@ MAX_TONES = 12
 #: Training draws the settings are chosen on (the first ones).
 N_CHOOSE = 16
 #: The rungs in the order of the ladder (top: the limit), with what each reads.
+#: The rung every other is scored against (its own ratio is 1 on every draw).
+REFERENCE = "best fixed (x, ŵ)"
 RUNGS = ("limit", "known tones", "predictive", "scheduled at breaks", "scheduled", "best fixed (x, ŵ)",
          "best fixed (x)", "gain switching", "FDSC")
 #: Each rung in words (the glossary defines them).

@@ -14,7 +14,7 @@ from numbers import Integral, Real
 import numpy as np
 
 __all__ = ["num", "count", "times", "span", "pct", "excess", "matrix_text", "glue_numbers",
-           "reading_minutes", "WORDS_PER_MINUTE", "times_ci", "share_pct"]
+           "reading_minutes", "WORDS_PER_MINUTE", "times_ci", "share_pct", "headroom_pct"]
 
 _SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
 
@@ -156,13 +156,15 @@ def span(lo, hi, digits=3, *, sep="–", fmt=num):
 
 
 def pct(share, digits=0):
-    """A share in [0, 1] as a percentage (``pct(0.04)`` is ``4 %``).
+    """A share in [0, 1] as a percentage (``pct(0.04)`` is ``4 %``); a share strictly between 0
+    and 1 is never printed as ``0 %`` or ``100 %`` (decimals are added, up to three, until it is
+    not).
 
     Parameters
     ----------
     share : float
     digits : int, optional
-        Decimals of the percentage.
+        Decimals of the percentage (at least).
 
     Returns
     -------
@@ -175,13 +177,17 @@ def pct(share, digits=0):
 
     Examples
     --------
-    >>> pct(0.0), pct(0.9), pct(0.123, 1)
-    ('0 %', '90 %', '12.3 %')
+    >>> pct(0.0), pct(0.9), pct(0.123, 1), pct(0.996), pct(1.0), pct(0.00004)
+    ('0 %', '90 %', '12.3 %', '99.6 %', '100 %', '0.004 %')
     """
     v = _real(share, "share")
     if not 0.0 <= v <= 1.0:
         raise ValueError(f"share must lie in [0, 1], but found {v!r}")
-    return f"{100 * v:.{digits}f} %"
+    out = f"{100 * v:.{digits}f} %"
+    while 0.0 < v < 1.0 and digits < 3 and float(out[:-2]) in (0.0, 100.0):
+        digits += 1
+        out = f"{100 * v:.{digits}f} %"
+    return out
 
 
 #: Excess over a bound up to which :func:`excess` prints a percentage rather than a factor.
@@ -325,6 +331,28 @@ def times_ci(row) -> str:
     '×0.800 [0.790, 0.812]'
     """
     return f"{times(row['median'])} [{times(row['low'])[1:]}, {times(row['high'])[1:]}]"
+
+
+def headroom_pct(x) -> str:
+    """A rung's share of the headroom for a table: :func:`share_pct` where it takes some (x ≥ 0),
+    ``none`` where it has more energy than the fixed controller it is scored against (a negative
+    share, which can run to thousands of per cent, says no more than its median ratio does).
+
+    Parameters
+    ----------
+    x : float
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> headroom_pct(0.69), headroom_pct(0.0), headroom_pct(-46.57)
+    ('69 %', '0 %', 'none')
+    """
+    v = _real(x, "x")
+    return share_pct(v) if v >= 0 else "none"
 
 
 def share_pct(x) -> str:
