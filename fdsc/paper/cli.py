@@ -205,7 +205,7 @@ def disturbance_law_command(argv=None):
     _writable_file(args.out, parser.prog, "--replace" if args.replace else "--out")
     if args.replace:
         _writable_file(Path(__file__).resolve().parent / "data" / CHOICE_FILE, parser.prog, "--replace")
-    start = time.perf_counter()
+    start, load_before = time.perf_counter(), os.getloadavg()[0]
 
     def run(executor):
         if not (args.robustness_only or args.measured_only):
@@ -239,8 +239,15 @@ def disturbance_law_command(argv=None):
     if not (args.robustness_only or args.measured_only):
         # how long the stored study took, and where (the book states it beside the numbers)
         result["seconds"] = round(time.perf_counter() - start, 1)
+        # the CPU time of this process and of its (joined) workers, and the host's load average
+        # over the last minute before and after: with the wall time, what the host gave the run
+        import resource
+
+        usage = [resource.getrusage(who) for who in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN)]
+        cpu = sum(u.ru_utime + u.ru_stime for u in usage)
         result["host"] = {"cpus": os.cpu_count(), "workers": args.workers if not args.scheduler else None,
-                          "scheduler": bool(args.scheduler)}
+                          "scheduler": bool(args.scheduler), "cpu_seconds": round(cpu, 1),
+                          "load_before": round(load_before, 2), "load_after": round(os.getloadavg()[0], 2)}
         args.out.write_text(json.dumps(result, indent=1))
     if args.replace:
         from fdsc.paper.shared.fixed_choice import FILE, write_choice
