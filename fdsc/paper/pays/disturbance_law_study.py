@@ -14,12 +14,15 @@ from fdsc.paper.pays.disturbance_law_runs import REFERENCE_FAMILIES, law_supervi
 from fdsc.paper.pays.fixed_designs import FixedSet
 from fdsc.paper.shared.examples import beats
 
-__all__ = ["HEADROOM_MIN", "MAX_SWITCHES_PER_CHANGE", "TARGETS", "law_key", "Study", "LAW_WORDS", "describe",
+__all__ = ["HEADROOM_MIN", "SHARE_MIN_DRAWS", "share_clause",
+           "MAX_SWITCHES_PER_CHANGE", "TARGETS", "law_key", "Study", "LAW_WORDS", "describe",
            "answer", "choose", "share_words"]
 
 #: The reference's least relative gain over the fixed controller chosen in advance for a draw to
 #: count in the share of it that a law realizes.
 HEADROOM_MIN = 0.01
+#: The fewest such draws on which the share is stated (on fewer, the chapter says how few).
+SHARE_MIN_DRAWS = 10
 #: The most switches per change of the dominating band a law may make to be chosen: one to
 #: follow the change, and two of indecision.
 MAX_SWITCHES_PER_CHANGE = 3.0
@@ -319,15 +322,53 @@ def share_words(share) -> str:
 
 
 def _noise_words(rob):
-    """What a noisy estimate (the copies and the decisions on it) leaves of the gain."""
+    """What a noisy estimate (the copies and the decisions on it) does to the law's median."""
     if not rob:
         return ""
-    from fdsc.paper.shared.prose import times
+    from fdsc.paper.shared.prose import count, times
 
     per = rob["snr_db"]
-    top = max(per, key=float)
-    return (f"; on an estimate with noise at {float(top):g} dB its median is {times(per[top]['median'])}, "
-            f"at {float(min(per, key=float)):g} dB {times(per[min(per, key=float)]['median'])}")
+    top, low = max(per, key=float), min(per, key=float)
+    return (f"; on an estimate with noise the law's median is {times(per[top]['median'])} at "
+            f"{float(top):g} dB and {times(per[low]['median'])} at {float(low):g} dB (its first "
+            f"{count(rob['draws'])} test draws)")
+
+
+def share_clause(r: dict, share) -> str:
+    """The share of the clairvoyant reference's gain the law realizes, where there is one to
+    speak of: the reference gains in median and on at least :data:`SHARE_MIN_DRAWS` draws.
+
+    Parameters
+    ----------
+    r : dict
+        An example of the stored study (``reference_median_ratio``, ``draws_with_headroom``).
+    share : float or None
+        The law's median share of the reference's gain.
+
+    Returns
+    -------
+    str
+        A clause to append to a sentence on the reference.
+
+    Examples
+    --------
+    >>> share_clause({"reference_median_ratio": 1.11, "draws_with_headroom": 3}, 0.68)[:40]
+    ', more energy than that fixed controller'
+    >>> share_clause({"reference_median_ratio": 0.9, "draws_with_headroom": 3}, 0.68)
+    ' (it gains at least 1 % on 3 test draws only, too few to state a share)'
+    >>> share_clause({"reference_median_ratio": 0.9, "draws_with_headroom": 40}, 0.68)
+    ', of which the law realizes 68 % (in median over the 40 draws where it gains)'
+    """
+    from fdsc.paper.shared.prose import count
+
+    n = r.get("draws_with_headroom", 0)
+    if r["reference_median_ratio"] >= 1:
+        return (", more energy than that fixed controller: in median there is no gain for a "
+                "law to realize")
+    if share is None or n < SHARE_MIN_DRAWS:
+        return f" (it gains at least 1 % on {count(n)} test draws only, too few to state a share)"
+    return (f", of which the law realizes {share_words(share)} (in median over the {count(n)} draws where "
+            "it gains)")
 
 
 def answer(full: dict) -> dict:
@@ -350,22 +391,23 @@ def answer(full: dict) -> dict:
         r = full[example]
         share = r["reference_share_median"]
         printed = r["fdsc_median_ratio"]["FDSC"]
-        ci = ""
+        ci, fdsc_words = "", times(printed)
         if "ladder" in r:
             from fdsc.paper.shared.prose import times_ci
 
             ci = f" [95 % interval {times_ci(r['ladder']['summary']['gain switching']).split('[')[1]}"
+            fdsc_words = times_ci(r["ladder"]["summary"]["FDSC"]).replace("[", "[95 % interval ")
         out[example] = (
             f"the best law, {describe(r['law'])}, has a median "
             f"{times(r['median_ratio_vs_fixed_in_advance'])}{ci} "
             f"the energy of *{r['fixed_in_advance']}*, the best fixed controller with equal information "
             f"(95th percentile {times(r['p95_ratio_vs_fixed_in_advance'])}, less energy on "
-            f"{pct(r['win_rate_vs_fixed_in_advance'])} of {count(r['draws_test'])} test draws); switching "
-            f"clairvoyantly at the breaks between controllers designed for each type of segment reaches a "
-            f"median {times(r['reference_median_ratio'])}"
-            + (f", of which the law realizes {share_words(share)}" if share is not None else "")
-            + f". The paper's FDSC has a median {times(printed)}"
-            + _noise_words(full.get("robustness", {}).get(example)) + ".")
+            f"{pct(r['win_rate_vs_fixed_in_advance'])} of {count(r['draws_test'])} test draws)"
+            f"{_noise_words(full.get('robustness', {}).get(example))}. Switching clairvoyantly at the breaks "
+            f"between controllers designed for each type of segment reaches a median "
+            f"{times(r['reference_median_ratio'])}"
+            + share_clause(r, share)
+            + f". The paper's FDSC has a median {fdsc_words}.")
     return out
 
 

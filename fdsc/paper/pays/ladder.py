@@ -393,7 +393,7 @@ def answer(full: dict) -> dict:
     dict
         ``{example: str}``.
     """
-    from fdsc.paper.shared.prose import count, pct, share_pct, times, times_ci
+    from fdsc.paper.shared.prose import count, pct, share_pct, times_ci
 
     out = {}
     for example in ("aircraft", "generic"):
@@ -406,8 +406,8 @@ def answer(full: dict) -> dict:
             f"the best realizable controller is the {RUNG_WORDS[best]}: a median {times_ci(b)} the energy "
             f"of the best fixed controller reading x and ŵ, less energy on {pct(b['win_rate'])} of "
             f"{count(b['draws'])} test draws, where no controller can go below the non-causal "
-            f"limit's {times_ci(lim)}; it takes {share_pct(share)} of that headroom (in log). The best "
-            f"fixed controller reading x alone has {times(x['median'])}.")
+            f"limit's {times_ci(lim)}; per draw it takes a median {share_pct(share)} of that headroom (in "
+            f"log). The best fixed controller reading x alone has {times_ci(x)}.")
     return out
 
 
@@ -433,7 +433,7 @@ def record_part():
                           "recheck": recheck_ladder(full, example)}
     words = answer(full)
     note = (f"stored full study (commit {full['commit'][:12]}): "
-            + "; ".join(f"{e}: {w}" for e, w in words.items())
+            + " ".join(f"{e.capitalize()}: {w}" for e, w in words.items())
             + " The build recomputes the first test draw of each example from the stored "
               "controllers.")
     return RecordPart((entry("ladder", "our computation (the ladder, stored study)", None, value, "new",
