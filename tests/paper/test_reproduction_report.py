@@ -321,3 +321,20 @@ def test_the_ladder_rows_give_a_share_only_where_a_rung_takes_headroom():
     assert sorted(r["share"] for r in rows) == ["", "69 %", "none"]
     # the reference is not said to win on 0 % of the draws against itself
     assert sorted(r["wins"] for r in rows) == ["50 %", "50 %", "the reference"]
+
+
+def test_the_law_rows_carry_an_interval_where_the_per_draw_ratios_are_stored():
+    from fdsc.paper.appendix.report_law import law_rows
+
+    ratios = [0.9, 0.95, 1.0, 1.05, 1.1] * 10
+    one = {"draws_test": 50, "draws_train": 50, "fixed_in_advance": "tuned",
+           "median_ratio_vs_fixed_in_advance": 1.0, "win_rate_vs_fixed_in_advance": 0.4,
+           "reference_median_ratio": 1.0,
+           "ratio_vs_fixed_in_advance": ratios, "reference_ratio": {"tuned pair": ratios}}
+    stored, = law_rows({"entries": []}, {"n": 100, "commit": "048c47d821e7", "aircraft": one})
+    assert re.fullmatch(r"×1\.00 \[0\.9\d*, 1\.0\d*\]", stored["median"])
+    assert stored["clairvoyant"] == stored["median"]
+    # the record's build-time check stores no per-draw ratios: the median alone
+    bare = {k: v for k, v in one.items() if k not in ("ratio_vs_fixed_in_advance", "reference_ratio")}
+    rec = {"entries": [{"id": "supervisor", "verdict": "new", "recomputed": {"aircraft": bare}}]}
+    assert [r["median"] for r in law_rows(rec)] == ["×1.00"]

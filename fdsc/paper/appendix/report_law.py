@@ -20,12 +20,33 @@ LAW_ENTRY = "supervisor"
 _LAW_EXAMPLES = {"aircraft": "aircraft", "generic": "generic example"}
 
 
+def _with_interval(median, per_draw):
+    """``×m`` or, where the per-draw ratios are at hand, ``×m [low, high]`` (bootstrap 95 %)."""
+    if per_draw is None or len(per_draw) < 2:
+        return times(median)
+    from fdsc.paper.shared.stats import bootstrap_median
+
+    _m, low, high = bootstrap_median(per_draw)
+    return f"{times(median)} [{times(low)[1:]}, {times(high)[1:]}]"
+
+
+def _reference_draws(r):
+    """The per-draw ratios of the clairvoyant reference whose median the study reports."""
+    import numpy as np
+
+    for q in (r.get("reference_ratio") or {}).values():
+        if q and float(np.median(q)) == r["reference_median_ratio"]:
+            return q
+    return None
+
+
 def _law_row(study, example, r):
     return {"study": study, "example": _LAW_EXAMPLES.get(example, example),
             "scored": count(int(r["draws_test"])), "chosen": html.escape(r["fixed_in_advance"]),
-            "median": times(r["median_ratio_vs_fixed_in_advance"]),
+            "median": _with_interval(r["median_ratio_vs_fixed_in_advance"],
+                                     r.get("ratio_vs_fixed_in_advance")),
             "wins": pct(r["win_rate_vs_fixed_in_advance"]),
-            "clairvoyant": times(r["reference_median_ratio"])}
+            "clairvoyant": _with_interval(r["reference_median_ratio"], _reference_draws(r))}
 
 
 def law_rows(record, full=None, *, fresh=True):
@@ -47,8 +68,10 @@ def law_rows(record, full=None, *, fresh=True):
         Trusted-HTML cells ``study`` (which numbers: the stored study with its draws and commit,
         or the build-time check with its draws), ``example``, ``scored`` (draws scored),
         ``chosen`` (the fixed controller chosen in advance), ``median`` (the law's median energy
-        over that controller's), ``wins`` (share of scored draws with less energy) and
-        ``clairvoyant`` (the median of clairvoyant switching at the breaks).
+        over that controller's, with its bootstrap 95 % interval where the per-draw ratios are
+        stored), ``wins`` (share of scored draws with less energy) and
+        ``clairvoyant`` (the median of clairvoyant switching at the breaks, with its interval
+        likewise).
 
     Examples
     --------
