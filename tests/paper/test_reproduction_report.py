@@ -330,7 +330,8 @@ def test_the_law_rows_carry_an_interval_where_the_per_draw_ratios_are_stored():
     one = {"draws_test": 50, "draws_train": 50, "fixed_in_advance": "tuned",
            "median_ratio_vs_fixed_in_advance": 1.0, "win_rate_vs_fixed_in_advance": 0.4,
            "reference_median_ratio": 1.0,
-           "ratio_vs_fixed_in_advance": ratios, "reference_ratio": {"tuned pair": ratios}}
+           "ratio_vs_fixed_in_advance": ratios, "reference_ratio": {"tuned pair": ratios},
+           "reference_family": "tuned pair"}
     stored, = law_rows({"entries": []}, {"n": 100, "commit": "048c47d821e7", "aircraft": one})
     assert re.fullmatch(r"×1\.00 \[0\.9\d*, 1\.0\d*\]", stored["median"])
     assert stored["clairvoyant"] == stored["median"]

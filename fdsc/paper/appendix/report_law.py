@@ -27,17 +27,7 @@ def _with_interval(median, per_draw):
     from fdsc.paper.shared.stats import bootstrap_median
 
     _m, low, high = bootstrap_median(per_draw)
-    return f"{times(median)} [{times(low)[1:]}, {times(high)[1:]}]"
-
-
-def _reference_draws(r):
-    """The per-draw ratios of the clairvoyant reference whose median the study reports."""
-    import numpy as np
-
-    for q in (r.get("reference_ratio") or {}).values():
-        if q and float(np.median(q)) == r["reference_median_ratio"]:
-            return q
-    return None
+    return times_ci({"median": median, "low": low, "high": high})
 
 
 def _law_row(study, example, r):
@@ -46,7 +36,8 @@ def _law_row(study, example, r):
             "median": _with_interval(r["median_ratio_vs_fixed_in_advance"],
                                      r.get("ratio_vs_fixed_in_advance")),
             "wins": pct(r["win_rate_vs_fixed_in_advance"]),
-            "clairvoyant": _with_interval(r["reference_median_ratio"], _reference_draws(r))}
+            "clairvoyant": _with_interval(r["reference_median_ratio"],
+                                          r.get("reference_ratio", {}).get(r.get("reference_family")))}
 
 
 def law_rows(record, full=None, *, fresh=True):
