@@ -65,13 +65,17 @@ def divided(x, y):
     return np.exp(lo) * phi1(hi - lo)
 
 
-def pair_integrals(p, ap, q, aq, L):
+def pair_integrals(p, ap, q, aq, L, *, pairs=False):
     """``I[i, j] = ∫₀ᴸ e^{p_i (τ − ap_i L)} e^{q_j (τ − aq_j L)} dτ`` for exponents p, q and anchors
-    ap, aq in {0, 1} (start or end of the piece), each term bounded on the piece."""
+    ap, aq in {0, 1} (start or end of the piece), each term bounded on the piece; with ``pairs``,
+    ``I[i] = ∫₀ᴸ e^{p_i (τ − ap_i L)} e^{q_i (τ − aq_i L)} dτ`` (p and q of one length)."""
     p, q = np.asarray(p, dtype=complex), np.asarray(q, dtype=complex)
     ap, aq = np.asarray(ap, dtype=bool), np.asarray(aq, dtype=bool)
-    P, Qm = np.broadcast_arrays(p[:, None], q[None, :])
-    AP, AQ = np.broadcast_arrays(ap[:, None], aq[None, :])
+    if pairs:
+        P, Qm, AP, AQ = p, q, ap, aq
+    else:
+        P, Qm = np.broadcast_arrays(p[:, None], q[None, :])
+        AP, AQ = np.broadcast_arrays(ap[:, None], aq[None, :])
     out = np.empty(P.shape, dtype=complex)
     both0 = ~AP & ~AQ
     bothL = AP & AQ
@@ -80,9 +84,10 @@ def pair_integrals(p, ap, q, aq, L):
     out[bothL] = L * phi1(-(P[bothL] + Qm[bothL]) * L)
     # one anchored at 0 (exponent e0, Re ≤ 0), the other at L (exponent eL, Re ≥ 0):
     # ∫ e^{e0 τ} e^{eL (τ − L)} = (e^{e0 L} − e^{−eL L}) / (e0 + eL)
-    e0 = np.where(AP, Qm, P)[mixed]
-    eL = np.where(AP, P, Qm)[mixed]
-    out[mixed] = L * divided(e0 * L, -eL * L)
+    if np.any(mixed):
+        e0 = np.where(AP, Qm, P)[mixed]
+        eL = np.where(AP, P, Qm)[mixed]
+        out[mixed] = L * divided(e0 * L, -eL * L)
     return out
 
 
@@ -136,14 +141,47 @@ class Modal:
     def gram(e, anchors, g, L, *, bound=False):
         """``∫₀ᴸ z zᵀ dτ`` (p, p) of z(τ) = Σ_t g_t e^{e_t (τ − anchors_t L)} (real z); with
         ``bound``, also ``Σ_ij |g_i|·|I_ij|·|g_j|`` ≥ its trace, the size of the terms it sums
-        (its trace has lost its digits to cancellation where it is ≲ eps times this)."""
-        ee = np.asarray(e)
-        Imat = pair_integrals(ee.conj(), anchors, ee, anchors, L)
+        (its trace has lost its digits to cancellation where it is ≲ eps times this).
+
+        Terms of the same exponent and anchor are first summed into one (z is linear in their
+        coefficients: the disturbance and an exact estimate of it give the same tones), and the
+        integrals' matrix, Hermitian (``I_ji`` is the conjugate of ``I_ij``), is formed on and
+        above its diagonal only."""
+        ee, an, g = _merged(np.asarray(e, dtype=complex), np.asarray(anchors, dtype=bool), np.asarray(g))
+        Imat = _hermitian_integrals(ee, an, L)
         G = (g.conj().T @ Imat @ g).real
         if not bound:
             return G
         ag = np.abs(g)
         return G, float(np.sum(ag * (np.abs(Imat) @ ag)))
+
+
+def _merged(e, anchors, g):
+    """The terms with equal exponent and anchor summed into the first of them (order kept)."""
+    if e.size < 2:
+        return e, anchors, g
+    key = np.stack([e.real, e.imag, anchors.astype(float)], axis=1)
+    _u, first, inv = np.unique(key, axis=0, return_index=True, return_inverse=True)
+    if first.size == e.size:
+        return e, anchors, g
+    order = np.argsort(first)                    # the unique terms in the order they first occur
+    rank = np.empty_like(order)
+    rank[order] = np.arange(order.size)
+    merged = np.zeros((first.size, g.shape[1]), dtype=np.result_type(g, complex))
+    np.add.at(merged, rank[np.ravel(inv)], g)
+    keep = first[order]
+    return e[keep], anchors[keep], merged
+
+
+def _hermitian_integrals(e, anchors, L):
+    """``pair_integrals(conj(e), anchors, e, anchors, L)``, formed on and above the diagonal."""
+    k = e.size
+    i, j = np.triu_indices(k)
+    vals = pair_integrals(e.conj()[i], anchors[i], e[j], anchors[j], L, pairs=True)
+    out = np.empty((k, k), dtype=complex)
+    out[i, j] = vals
+    out[j, i] = vals.conj()
+    return out
 
 
 def tone_terms(t0, w, amp, ph):

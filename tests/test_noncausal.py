@@ -135,6 +135,34 @@ def test_the_engine_agrees_with_the_block_exponentials_on_tones():
         loop_energy(LTISystem(A, B, C, D), d, 13.7), rel=1e-11)
 
 
+def test_the_gram_sums_repeated_terms_and_forms_half_of_its_hermitian_integrals():
+    # the same tones entering twice (a disturbance and its exact estimate) and a tail anchored at
+    # the end: the Gram of the terms as given equals the Gram formed term by term over the full
+    # matrix of pair integrals, and the one of the repeated terms summed by hand
+    from fdsc._modal import pair_integrals
+
+    rng = np.random.default_rng(4)
+    s = np.r_[1j * 2.0, -1j * 2.0, 0.3, 1j * 2.0, -1j * 2.0, -0.5 + 1j, -0.5 - 1j]
+    an = np.array([False, False, True, False, False, False, False])
+    g = rng.normal(size=(7, 2)) + 1j * rng.normal(size=(7, 2))
+    L = 3.7
+    full = (g.conj().T @ pair_integrals(s.conj(), an, s, an, L) @ g).real
+    G, size = Modal.gram(s, an, g, L, bound=True)
+    np.testing.assert_allclose(G, full, rtol=1e-13, atol=1e-13 * np.abs(full).max())
+    keep = [0, 1, 2, 5, 6]
+    summed = g[keep].copy()
+    summed[0] += g[3]
+    summed[1] += g[4]
+    np.testing.assert_allclose(Modal.gram(s[keep], an[keep], summed, L), G, rtol=1e-13,
+                               atol=1e-13 * np.abs(G).max())
+    assert size >= np.trace(G) > 0
+    # the same exponent anchored at the other end is another term: not summed
+    an2 = an.copy()
+    an2[3] = True
+    full2 = (g.conj().T @ pair_integrals(s.conj(), an2, s, an2, L) @ g).real
+    np.testing.assert_allclose(Modal.gram(s, an2, g, L), full2, rtol=1e-12, atol=1e-12 * np.abs(full2).max())
+
+
 @pytest.mark.parametrize("plant, d, horizon, kw, err, match", [
     (Plant([[-1.0]], [[1.0]], [[1.0]], [[1.0]], [[0.0]], [[0.0]]), D3, 5.0, {}, ValueError,
      r"D2 must have full column rank"),

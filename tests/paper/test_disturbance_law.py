@@ -100,6 +100,23 @@ def test_the_targets_are_judged_on_the_test_draws():
     assert not dl.Study("generic", 1, tuple(bad), _fs(), x, runs.REFERENCE_FAMILIES[0]).meets()["met"]
 
 
+def test_the_test_draws_need_only_the_settings_chosen_on_the_training_half(monkeypatch):
+    # the study runs every setting on its training draws and, on its test draws, only those
+    # scored_settings names: the law choose() picks (first), then each family's best
+    from fdsc.paper.pays import disturbance_law_study
+
+    x, y, z = (runs.settings()[k] for k in (0, 1, 2))
+    monkeypatch.setattr(disturbance_law_study, "settings", lambda: [x, y, z])
+    train = [_fake(i, {"A": 2.0, "B": 1.0}, {x: (0.5, 10, False, 1.0), y: (0.8, 2, False, 0.5),
+                                             z: (0.9, 0, False, 0.0)}, 0.7) for i in range(3)]
+    keys = disturbance_law_study.scored_settings("aircraft", train, 1, _fs())
+    test = [_fake(i, {"A": 1.0, "B": 2.0}, {k: (1.0, 0, False, 0.0) for k in keys}, 1.6) for i in range(3, 6)]
+    st = dl.choose("aircraft", train + test, 1, _fs())
+    # x is cheapest but over the switching limit: y is the law and the gains family's best
+    assert keys == (y,) and st.law == keys[0]
+    assert st.best_of("gains/cost") in keys and st.law == st.best_of("") == y
+
+
 @pytest.fixture(scope="module")
 def fs():
     return fixed_set("generic", dl.N_RECORD, dd.SEED)
@@ -157,6 +174,21 @@ def test_a_stored_choice_matches_the_stored_study():
         assert choice[e]["name"] == full[e]["fixed_in_advance"]
         assert choice[e]["matrices"] == full[e]["fixed_controllers"][choice[e]["name"]]["matrices"]
     assert choice["commit"] == full["commit"] and choice["n"] == full["n"] == dl.N_FULL
+
+
+def test_a_test_draw_runs_only_the_settings_asked_and_gives_them_the_same_numbers(fs):
+    every = runs.draw_result("generic", 4, dd.SEED, fs)
+    keys = runs.settings()[5:7]
+    part = runs.draw_result("generic", 4, dd.SEED, fs, keys, keys[:1])
+    assert set(part["runs"]) == set(keys)
+    assert part["runs"][keys[0]] == every["runs"][keys[0]]
+    e, s, d, step = part["runs"][keys[1]]
+    assert (e, s, d) == every["runs"][keys[1]][:3] and math.isnan(step)      # its step not measured
+    assert part["fixed"] == every["fixed"] and part["ideal"] == every["ideal"]
+    with pytest.raises(ValueError, match="keys must be settings"):
+        runs.draw_result("generic", 4, dd.SEED, fs, ["gains/cost/copies/9/9"])
+    with pytest.raises(ValueError, match="steps must be among keys"):
+        runs.draw_result("generic", 4, dd.SEED, fs, keys[:1], keys[1:])
 
 
 @pytest.mark.parametrize("example", ["aircraft", "generic"])

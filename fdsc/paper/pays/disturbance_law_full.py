@@ -6,6 +6,7 @@ measurements, the stored file and the fixed controllers rebuilt from it.
 from __future__ import annotations
 
 import json
+import time
 from pathlib import Path
 
 import numpy as np
@@ -21,7 +22,7 @@ from fdsc.paper.pays.disturbance_law_robust import (
     robust_result,
 )
 from fdsc.paper.pays.disturbance_law_runs import REFERENCE_FAMILIES, draw_result
-from fdsc.paper.pays.disturbance_law_study import choose, law_key
+from fdsc.paper.pays.disturbance_law_study import FAMILIES, choose, law_key, scored_settings
 from fdsc.paper.pays.fixed_designs import FixedSet, fixed_set
 from fdsc.paper.pays.stored_study import FULL_FILE, _stored_example, load_full, map_draws, stored_fixed_set
 from fdsc.paper.shared.examples import beats
@@ -45,6 +46,18 @@ def _controller_record(c) -> dict:
     return out
 
 
+class _Clock:
+    """Wall seconds of each phase of a study, in order."""
+
+    def __init__(self):
+        self.seconds, self._t = {}, time.perf_counter()
+
+    def __call__(self, phase):
+        now = time.perf_counter()
+        self.seconds[phase] = round(now - self._t, 1)
+        self._t = now
+
+
 def full_study(n: int = N_FULL, *, seed: int = SEED, executor=None, out=None) -> dict:
     """The full study of both examples.
 
@@ -63,33 +76,38 @@ def full_study(n: int = N_FULL, *, seed: int = SEED, executor=None, out=None) ->
     dict
         ``commit``, ``fingerprint``, ``n``, ``seed``, and per example the summary
         (:meth:`Study.summary`) with every test draw's ratios for every fixed controller, FDSC
-        variant, law family and reference, and the fixed controllers' matrices.
+        variant, law family and reference, and the fixed controllers' matrices; ``phase_seconds``
+        (the wall time of each phase, in order).
     """
     from fdsc.paper.shared.cache import source_fingerprint
     from fdsc.paper.shared.environment import build_commit
 
     n = as_count("n", n, N_MIN)
     result = {"commit": build_commit(), "fingerprint": source_fingerprint(), "n": n, "seed": seed}
+    clock = _Clock()
     # the two examples' fixed controllers are tuned at once (each tuning is serial, and the
     # longest single task of the study)
     sets = map_draws(fixed_set, [(example, n, seed) for example in ("aircraft", "generic")], executor)
+    clock("fixed controllers")
     for example, fs in zip(("aircraft", "generic"), sets, strict=True):
-        draws = map_draws(draw_result, [(example, i, seed, fs) for i in range(n)], executor)
-        st = choose(example, draws, seed, fs)
+        # every setting on the training draws (the choice), on the test draws only those scored
+        train = map_draws(draw_result, [(example, i, seed, fs, None, ()) for i in range(n // 2)], executor)
+        keys = scored_settings(example, train, seed, fs)
+        test = map_draws(draw_result, [(example, i, seed, fs, keys, keys[:1]) for i in range(n // 2, n)],
+                         executor)
+        st = choose(example, train + test, seed, fs)
+        if st.law != keys[0]:                       # the same choice from the same training draws
+            raise RuntimeError(f"{example}: the law chosen on all draws ({st.law}) is not the one the "
+                               f"test draws were run for ({keys[0]})")
+        clock(f"{example}: draws")
         result[example] = st.summary() | {
             "test_indices": [r["index"] for r in st.test],
             "ratio_vs_fixed_in_advance": st.ratio().tolist(),
             "fixed_ratio": {k: st.fixed_ratio(k).tolist() for k in fs.names},
             "fdsc_ratio": {v: st.fdsc_ratio(v).tolist() for v in st.test[0]["fdsc"]},
             "reference_ratio": {f: st.reference_ratio(f).tolist() for f in REFERENCE_FAMILIES},
-            "family_best": {p: st.best_of(p) for p in ("gains/cost", "ideal pair/band_power",
-                                                       "tuned pair/band_power", "tuned pair/cost",
-                                                       "tuned filtered pair/band_power",
-                                                       "tuned filtered pair/cost")},
-            "family_ratio": {p: st.ratio(st.best_of(p)).tolist()
-                             for p in ("gains/cost", "ideal pair/band_power", "tuned pair/band_power",
-                                       "tuned pair/cost", "tuned filtered pair/band_power",
-                                       "tuned filtered pair/cost")},
+            "family_best": {p: st.best_of(p) for p in FAMILIES},
+            "family_ratio": {p: st.ratio(st.best_of(p)).tolist() for p in FAMILIES},
             "settings": st.settings_table(),
             "oracle_ratio": [r["oracle"] / r["fixed"][fs.chosen] for r in st.test],
             "ideal_ratio": [r["ideal"] / r["fixed"][fs.chosen] for r in st.test],
@@ -100,8 +118,12 @@ def full_study(n: int = N_FULL, *, seed: int = SEED, executor=None, out=None) ->
             "fixed_in_advance_x": fs.chosen_x,
             "ladder": ladder_study(example, fs, st, seed, executor),
         }
+        clock(f"{example}: ladder")
     result["robustness"] = robustness(result, n=min(N_ROBUST, n - n // 2), executor=executor)
+    clock("noisy estimate")
     result["measured"] = measured_robustness(result, n=min(N_ROBUST, n - n // 2), executor=executor)
+    clock("sampled measurements")
+    result["phase_seconds"] = clock.seconds
     if out is not None:
         Path(out).parent.mkdir(parents=True, exist_ok=True)
         Path(out).write_text(json.dumps(result, indent=1))

@@ -19,6 +19,8 @@ type, realized through copies as the laws are (the state carried over): the valu
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 import fdsc
@@ -160,13 +162,14 @@ def segment_choice(prep, dr) -> list:
     return out
 
 
-def _stats(prep, lam, h):
-    """``(energy, switches, diverged, largest step of u over its RMS)`` of one law setting."""
+def _stats(prep, lam, h, step=True):
+    """``(energy, switches, diverged, largest step of u over its RMS)`` of one law setting (the
+    step NaN when ``step`` is false: not measured)."""
     mu = prep.mu(lam)
     sigma = prep.decide(mu, hysteresis=h)
     r = prep.run_sequence(sigma)
-    jump = 0.0
-    if r.switches:
+    jump = 0.0 if step else math.nan
+    if step and r.switches:
         c = prep.control(sigma)
         jump = float(c["jumps"].max() / c["rms"]) if c["rms"] > 0 else float("inf")
     return (r.energy, r.switches, r.diverged_at is not None, jump)
@@ -183,7 +186,8 @@ def _fdsc_energies(ex, dr):
             for k, n in enumerate(names)}
 
 
-def draw_result(example: str, index: int, seed: int = SEED, fs: FixedSet | None = None) -> dict:
+def draw_result(example: str, index: int, seed: int = SEED, fs: FixedSet | None = None, keys=None,
+                steps=None) -> dict:
     """Every controller of the study on draw ``index`` of the seeded sequence.
 
     Parameters
@@ -194,6 +198,13 @@ def draw_result(example: str, index: int, seed: int = SEED, fs: FixedSet | None 
     seed : int, optional
     fs : FixedSet
         The study's fixed controllers (:func:`fdsc.paper.pays.fixed_designs.fixed_set`).
+    keys : sequence of str, optional
+        The law settings run (default every one, :func:`settings`): a training draw needs every
+        setting (the choice), a test draw only those the study scores
+        (:func:`fdsc.paper.pays.disturbance_law_study.scored_settings`).
+    steps : sequence of str, optional
+        The settings whose largest step of u is measured (default every one run; the others
+        report NaN): the study reports it for the chosen law on the test draws only.
 
     Returns
     -------
@@ -203,11 +214,27 @@ def draw_result(example: str, index: int, seed: int = SEED, fs: FixedSet | None 
         oracle among the cost law's gains), ``ideal`` (PassC-LF on LF-dominated pieces, PassC-HF
         on HF ones), ``reference`` (``{family: energy}`` of the clairvoyant switching between the
         family's two per-type designs), ``runs`` (``{setting: (energy, switches, diverged,
-        largest step of u over its RMS)}``), ``changes``, ``segments``, ``horizon``,
-        ``input_energy``.
+        largest step of u over its RMS)}`` of the settings ``keys``), ``changes``, ``segments``,
+        ``horizon``, ``input_energy``.
+
+    Raises
+    ------
+    ValueError
+        If ``fs`` is missing, or ``keys`` or ``steps`` names a setting that is not one of
+        :func:`settings` (``steps`` also: not one of ``keys``).
     """
     if fs is None:
         raise ValueError("fs must be the study's FixedSet (fdsc.paper.pays.fixed_designs.fixed_set)")
+    every = settings()
+    keys = every if keys is None else list(keys)
+    bad = [k for k in keys if k not in every]
+    if bad:
+        raise ValueError(f"keys must be settings of the study (fdsc.paper.pays.disturbance_law_runs."
+                         f"settings()), but found {bad[0]!r}")
+    steps = set(keys) if steps is None else set(steps)
+    if not steps <= set(keys):
+        raise ValueError(f"steps must be among keys (the settings run), but found "
+                         f"{sorted(steps - set(keys))[0]!r}")
     ex, dr = seeded_draw(example, index, seed)
     K0 = lqr(example)
     names, gains = candidates(example)
@@ -223,7 +250,7 @@ def draw_result(example: str, index: int, seed: int = SEED, fs: FixedSet | None 
         reference[fam] = ref.prepare(dr.d, dr.horizon).segment_law(choice)
     runs = {}
     preps = {}
-    for key in settings():
+    for key in keys:
         cand, law, _real, lam, h = key.split("/")
         if (cand, law) not in preps:
             if cand == "gains":
@@ -231,7 +258,10 @@ def draw_result(example: str, index: int, seed: int = SEED, fs: FixedSet | None 
             else:
                 s, _n, _l, _h = law_supervisor(example, key, fs)
                 preps[(cand, law)] = s.prepare(dr.d, dr.horizon)
-        runs[key] = _stats(preps[(cand, law)], float(lam), float(h))
+        runs[key] = _stats(preps[(cand, law)], float(lam), float(h), key in steps)
+    if ("ideal pair", "band_power") not in preps:
+        s, _n, _l, _h = law_supervisor(example, "ideal pair/band_power/copies/1/0", fs)
+        preps[("ideal pair", "band_power")] = s.prepare(dr.d, dr.horizon)
     ideal_prep = preps[("ideal pair", "band_power")]
     ideal = ideal_prep.with_K0(None).segment_law(segment_choice(ideal_prep, dr))
     return {"index": index, "horizon": dr.horizon, "changes": dr.changes, "segments": len(dr.dominant),

@@ -15,7 +15,7 @@ from fdsc.paper.pays.fixed_designs import FixedSet
 from fdsc.paper.shared.examples import beats
 
 __all__ = ["HEADROOM_MIN", "SHARE_MIN_DRAWS", "share_clause",
-           "MAX_SWITCHES_PER_CHANGE", "TARGETS", "law_key", "Study", "LAW_WORDS", "describe",
+           "MAX_SWITCHES_PER_CHANGE", "TARGETS", "FAMILIES", "scored_settings", "law_key", "Study", "LAW_WORDS", "describe",
            "answer", "choose", "share_words"]
 
 #: The reference's least relative gain over the fixed controller chosen in advance for a draw to
@@ -69,6 +69,8 @@ class Study:
         The setting chosen on the training half.
     reference : str
         The family whose clairvoyant reference is best on the training half.
+    n_train : int, optional
+        How many of ``draws`` (the first ones) train; default half of them.
     """
 
     example: str
@@ -77,6 +79,7 @@ class Study:
     fixed: FixedSet
     law: str
     reference: str
+    n_train: int | None = None
 
     @property
     def fixed_in_advance(self) -> str:
@@ -86,12 +89,16 @@ class Study:
     @property
     def train(self) -> tuple:
         """The training half."""
-        return self.draws[:len(self.draws) // 2]
+        return self.draws[:self._split]
 
     @property
     def test(self) -> tuple:
         """The scored half."""
-        return self.draws[len(self.draws) // 2:]
+        return self.draws[self._split:]
+
+    @property
+    def _split(self) -> int:
+        return len(self.draws) // 2 if self.n_train is None else self.n_train
 
     def _ref(self, r):
         return r["fixed"][self.fixed_in_advance]
@@ -409,6 +416,35 @@ def answer(full: dict) -> dict:
             + share_clause(r, share)
             + f". The paper's FDSC has a median {fdsc_words}.")
     return out
+
+
+#: The law families whose best setting (on the training half) the study scores beside the law.
+FAMILIES = ("gains/cost", "ideal pair/band_power", "tuned pair/band_power", "tuned pair/cost",
+            "tuned filtered pair/band_power", "tuned filtered pair/cost")
+
+
+def scored_settings(example, train, seed, fs) -> tuple:
+    """The settings a study scores on its test draws, from its training draws alone: the law
+    chosen (first) and the best setting of each of :data:`FAMILIES`.
+
+    Parameters
+    ----------
+    example : str
+    train : sequence of dict
+        :func:`fdsc.paper.pays.disturbance_law_runs.draw_result` of the training draws (every
+        setting run).
+    seed : int
+    fs : FixedSet
+
+    Returns
+    -------
+    tuple of str
+        The test draws need these settings only (:func:`choose` makes the same choices from the
+        training half).
+    """
+    st = Study(example, seed, tuple(train), fs, settings()[0], REFERENCE_FAMILIES[0], n_train=len(train))
+    present = [p for p in FAMILIES if any(k.startswith(p) for k in settings())]
+    return tuple(dict.fromkeys([st.best_of(""), *(st.best_of(p) for p in present)]))
 
 
 def choose(example, draws, seed, fs):
