@@ -280,9 +280,10 @@ def robustness(full: dict, *, n: int = N_ROBUST, snrs=ROBUST_SNR_DB, executor=No
     Returns
     -------
     dict
-        ``{example: {"draws", "exact_median", "exact_win_rate", "snr_db": {snr: {"median",
-        "win_rate", "decisions_only_median", "fixed_median", "switches_ratio"}}}}``, each against
-        the fixed controller chosen in advance on the exact estimate.
+        ``{example: {"draws", "exact_ratios", "exact_median", "exact_win_rate", "snr_db": {snr:
+        {"ratios", "decisions_only_ratios", "fixed_ratios", "median", "win_rate",
+        "decisions_only_median", "fixed_median", "switches_ratio"}}}}`` (the ratios per draw, for
+        intervals), each against the fixed controller chosen in advance on the exact estimate.
     """
     n = as_count("n", n, 1)
     out = {}
@@ -295,6 +296,9 @@ def robustness(full: dict, *, n: int = N_ROBUST, snrs=ROBUST_SNR_DB, executor=No
             part = res[k * n:(k + 1) * n]
             noisy = np.array([p["noisy"] for p in part])
             per[str(float(snr))] = {
+                "ratios": noisy.tolist(),
+                "decisions_only_ratios": [float(p["decisions_only"]) for p in part],
+                "fixed_ratios": [float(p["fixed_noisy"]) for p in part],
                 "median": float(np.median(noisy)), "win_rate": float(np.mean(beats(noisy))),
                 "p95": float(np.quantile(noisy, 0.95)),
                 "decisions_only_median": float(np.median([p["decisions_only"] for p in part])),
@@ -302,7 +306,7 @@ def robustness(full: dict, *, n: int = N_ROBUST, snrs=ROBUST_SNR_DB, executor=No
                 "switches_ratio": float(sum(p["switches_noisy"] for p in part)
                                         / max(1, sum(p["switches_exact"] for p in part)))}
         exact = np.array([p["exact"] for p in res[:n]])
-        out[example] = {"draws": n, "exact_median": float(np.median(exact)),
+        out[example] = {"draws": n, "exact_ratios": exact.tolist(), "exact_median": float(np.median(exact)),
                         "exact_win_rate": float(np.mean(beats(exact))), "snr_db": per}
     return out
 
@@ -322,8 +326,8 @@ def measured_robustness(full: dict, *, n: int = N_ROBUST, executor=None) -> dict
     Returns
     -------
     dict
-        ``{example: {"draws", "dt", "variants": {name: {"median", "win_rate", "p95",
-        "switches_ratio", "diverged"}}, "min_switching": {...}, "commit"}}``.
+        ``{example: {"draws", "dt", "variants": {name: {"ratios", "median", "win_rate", "p95",
+        "switches_ratio", "diverged"}}, "min_switching": {...}, "commit"}}`` (the ratios per draw).
     """
     from fdsc.paper.shared.environment import build_commit
 
@@ -336,7 +340,8 @@ def measured_robustness(full: dict, *, n: int = N_ROBUST, executor=None) -> dict
         per = {}
         for name in ("exact", *MEASURED_VARIANTS, "min_switching"):
             ratio = np.array([p[name]["ratio"] for p in res])
-            per[name] = {"median": float(np.median(ratio)), "p95": float(np.quantile(ratio, 0.95)),
+            per[name] = {"ratios": ratio.tolist(), "median": float(np.median(ratio)),
+                         "p95": float(np.quantile(ratio, 0.95)),
                          "win_rate": float(np.mean(beats(ratio))),
                          "switches_ratio": float(sum(p[name]["switches"] for p in res)
                                                  / max(1, sum(p["exact"]["switches"] for p in res))),
