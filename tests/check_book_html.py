@@ -101,6 +101,9 @@ PROJECT_SPEAK = (
     ("a record-entry id", re.compile(r"(?<![\w.])(?:" + "|".join(RECORD_IDS) + r")(?![\w(])")),
     ("a Python list of names", re.compile(r"\[\s*'[a-z][a-z0-9_]*'\s*,\s*'[a-z][a-z0-9_]*'")),
     ("a Python tuple", re.compile(r"\((?:True|False|None), |\(-?\d+\.\d{9,}, (?:True|False)")),
+    ("the per-case comparator called 'best fixed controller' (the glossary's 'best comparator of "
+     "the case')", re.compile(r"\bbest fixed (?:controller )?of (?:the|each) (?:case|draw|point)s?\b",
+                             re.IGNORECASE)),
     ("a glue key or code name", re.compile(r"(?<![\w.$\\/-])(?!(?:" + "|".join(RECORD_IDS) + r")(?![\w(]))"
                                            r"[a-z][a-z0-9]*_[a-z0-9]+_[a-z0-9_]+(?![\w(/.])")),
 )

@@ -513,7 +513,7 @@ def record_part() -> RecordPart:
     note = (f"on a two-mass chain (d on the appendage, u on the base) PassC-LF's LF peak is "
             f"{h.factor_lf:.3g} times below H-infinity's and its HF peak {h.loss_lf:.3g} times above; "
             f"PassC-HF's HF peak is {h.factor_hf:.4f} times H-infinity's (H-infinity is limited by "
-            f"the HF band); FDSC (printed law, Theorem 1 Q's) beats the best fixed controller on "
+            f"the HF band); FDSC (printed law, Theorem 1 Q's) beats the best comparator on "
             f"{p['FDSC'].share:.0%} of the rho_p sweep (best energy ratio best-fixed/FDSC "
             f"{p['FDSC'].best_gain:.4f}) and on {t['FDSC'].share:.0%} of the rho_t sweep "
             f"({t['FDSC'].best_gain:.4f}); with the dwell law on {p['FDSC (dwell)'].share:.0%} and "

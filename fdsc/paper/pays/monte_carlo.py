@@ -2,7 +2,7 @@
 frequencies inside the bands, phases, amplitudes and dominance degree α) and band-limited
 coloured noise of prescribed α (through the sampled-input path, first-order hold), every
 controller of an example run under each (:meth:`fdsc.paper.shared.examples.Example.compare`), FDSC's
-energy against the best fixed controller of each draw and against the fixed controller chosen in
+energy against the best comparator of each draw and against the fixed controller chosen in
 advance.
 
 "Chosen in advance" is the fixed controller of least mean steady-state energy ratio over a
@@ -232,7 +232,7 @@ class MonteCarlo:
     diverged: dict
 
     def oracle(self, noise: bool = False) -> tuple:
-        """The best fixed controller of each draw and its energy.
+        """The best comparator of each draw and its energy.
 
         Parameters
         ----------
@@ -257,7 +257,7 @@ class MonteCarlo:
         name : str
             A controller of :attr:`names`.
         against : {"oracle", "advance"}, optional
-            The best fixed controller of each draw, or the one chosen in advance.
+            The best comparator of each draw, or the one chosen in advance.
         noise : bool, optional
             The noise runs instead of the tone draws.
 
@@ -278,7 +278,7 @@ class MonteCarlo:
         name : str
             A controller of :attr:`names`.
         against : {"oracle", "advance"}, optional
-            The best fixed controller of each draw, or the one chosen in advance.
+            The best comparator of each draw, or the one chosen in advance.
         noise : bool, optional
             The noise runs instead of the tone draws.
 
@@ -297,7 +297,7 @@ class MonteCarlo:
         name : str
             A controller of :attr:`names`.
         against : {"oracle", "advance"}, optional
-            The best fixed controller of each draw, or the one chosen in advance.
+            The best comparator of each draw, or the one chosen in advance.
         noise : bool, optional
             The noise runs instead of the tone draws.
 
@@ -315,7 +315,7 @@ class MonteCarlo:
         name : str
             A controller of :attr:`names`.
         against : {"oracle", "advance"}, optional
-            The best fixed controller of each draw, or the one chosen in advance.
+            The best comparator of each draw, or the one chosen in advance.
 
         Returns
         -------
@@ -358,11 +358,11 @@ class MonteCarlo:
         good = [f"{ALPHA_BINS[b]:.1f}–{ALPHA_BINS[b + 1]:.1f}" for b in range(len(rates)) if rates[b] >= 0.5]
         med = float(np.median(self.ratio(n)))
         adv = self.win_rate(n, "advance")
-        where = (f"it beats the best fixed controller of the draw in most draws only for α in "
+        where = (f"it beats the best comparator of the draw in most draws only for α in "
                  f"{', '.join(good)}" if good else
-                 "in no bin of α does it beat the best fixed controller of the draw in most draws: "
+                 "in no bin of α does it beat the best comparator of the draw in most draws: "
                  "FDSC does not pay on these disturbances")
-        return (f"On the {self.example} example, {n} beats the best fixed controller of the draw in "
+        return (f"On the {self.example} example, {n} beats the best comparator of the draw in "
                 f"{100 * self.win_rate(n):.0f} % of the {self.alpha.size} tone draws (median energy "
                 f"{med:.3g} times that controller's) and the controller fixed in advance "
                 f"({self.in_advance}) in {100 * adv:.0f} %; {where}.")

@@ -97,7 +97,7 @@ def plot_mc_ratio(result, ax=None, *, against="oracle"):
     result : MonteCarlo
     ax : Axes, optional
     against : {"oracle", "advance"}
-        The best fixed controller of each draw, or the one chosen in advance.
+        The best comparator of each draw, or the one chosen in advance.
 
     Returns
     -------
@@ -113,7 +113,7 @@ def plot_mc_ratio(result, ax=None, *, against="oracle"):
     ax.axhline(1.0, color="k", lw=0.8, ls=":")
     ax.set_yscale("log")
     ax.set_xlabel(r"HF share of the power $\alpha$ [-]")
-    ref = "the best fixed controller of the draw" if against == "oracle" else \
+    ref = "the best comparator of the draw" if against == "oracle" else \
         f"{result.in_advance} (fixed in advance)"
     ax.set_ylabel(f"energy / energy of\n{ref} [-]")
     ax.grid(True, which="both", alpha=0.3)
@@ -141,7 +141,7 @@ def plot_mc_cdf(result, ax=None, *, against="oracle"):
         ax.step(r, np.arange(1, r.size + 1) / r.size, where="post", color=color, ls=ls, label=n)
     ax.axvline(1.0, color="k", lw=0.8, ls=":")
     ax.set_xscale("log")
-    ax.set_xlabel("energy / energy of the best fixed controller of the draw [-]"
+    ax.set_xlabel("energy / energy of the best comparator of the draw [-]"
                   if against == "oracle" else f"energy / energy of {result.in_advance} [-]")
     ax.set_ylabel("share of draws [-]")
     ax.grid(True, which="both", alpha=0.3)

@@ -425,7 +425,7 @@ def comparator_energies(*, dt: float = STATIONARY_DT) -> dict:
 
 def against_comparators(study: LawStudy, extra: dict, law: str = "dwell",
                         p: float | None = None) -> list:
-    """A law against the best fixed controller of each case (the comparator set of
+    """A law against the best comparator of each case (the comparator set of
     :mod:`fdsc.paper.shared.comparators`).
 
     Parameters

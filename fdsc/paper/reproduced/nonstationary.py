@@ -384,7 +384,7 @@ class ComparatorCheck:
 
 
 def against_comparators() -> dict:
-    """FDSC against the best fixed controller of each point of both sweeps.
+    """FDSC against the best comparator of each point of both sweeps.
 
     The energies come from :func:`fdsc.paper.reproduced.paper_cases.baselines`, whose mixed and piecewise
     scenarios are the points of paper Figs. 7 and 8 with every controller of the comparator set

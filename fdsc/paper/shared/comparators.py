@@ -1,11 +1,12 @@
-"""The one comparator set: the fixed controllers that every "best fixed" statement of the book,
-the claims checklist and the report compares against.
+"""The one comparator set: the fixed controllers that every "best comparator" statement of the
+book, the claims checklist and the report compares against.
 
 On the aircraft these are the open loop (K = 0), the paper's three fixed gains (PassC-EF = K_e,
 PassC-LF = K_f1, PassC-HF = K_f3) and the best certified HF design (the printed K_f3 is not the
 best HF design its own LMIs allow: chapter 'passive_controllers'); on the generic example, the open
-loop and its three designs (H∞, LF, HF). "The best fixed controller" of a case is the member of
-the set with the least output energy in that case; comparisons among the paper's four controllers
+loop and its three designs (H∞, LF, HF). "The best comparator" of a case is the member of the
+set with the least output energy in that case (Part II's "best fixed controller" is another
+thing: the best fixed controller with equal information); comparisons among the paper's four controllers
 only are said so in words ("among the paper's four controllers").
 
 The record's entry ``comparators`` (who is best where) is computed in
@@ -64,7 +65,7 @@ def comparators(example="aircraft"):
 
 
 def best_fixed(energy, example="aircraft"):
-    """The best fixed controller of one case: the member of the comparator set of least energy.
+    """The best comparator of one case: the member of the comparator set of least energy.
 
     Parameters
     ----------
