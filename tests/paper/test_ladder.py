@@ -92,3 +92,20 @@ def test_the_summary_pages_errata_are_the_reports():
     lines = errata_summary(record).splitlines()
     assert len(lines) == len(errata(record)) > 0
     assert [ln.split(". ", 1)[0] for ln in lines] == [str(r["n"]) for r in errata(record)]
+
+
+def test_every_erratum_of_the_summary_says_what_is_wrong_in_one_line():
+    from fdsc.paper.appendix.reproduction_report import erratum_words, errata, errata_summary
+
+    record = json.loads((ROOT / "book" / "data" / "reproduction.json").read_text()) \
+        if (ROOT / "book" / "data" / "reproduction.json").is_file() else None
+    if record is None:
+        pytest.skip("no built record in this checkout")
+    for line, row in zip(errata_summary(record).splitlines(), errata(record), strict=True):
+        what = line.split(f"*{row['verdict']}*: ", 1)[1]
+        assert what == row["what"] and 20 < len(what) < 400, line
+    # the bound beside K_f3 reads its numbers from the entry: its band peak over the printed bound
+    entry = {"id": "bound_f3", "inequality": {"quantity": 1.605, "bound": 0.1714, "holds": False}}
+    assert "1.605, above the printed 0.1714 (×9.364)" in erratum_words(entry)
+    with pytest.raises(KeyError, match="'new_entry'"):
+        erratum_words({"id": "new_entry", "recomputed": 1.0})

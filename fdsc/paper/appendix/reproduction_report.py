@@ -384,7 +384,7 @@ def errata(record):
     -------
     list of dict
         ``n`` and the trusted-HTML fields ``where``, ``printed``, ``ours`` (empty for words),
-        ``verdict`` and ``why``, printed numbers and proof steps first in the record's order, then
+        ``verdict`` and ``why``, and ``what`` (:func:`erratum_words`, plain text), printed numbers and proof steps first in the record's order, then
         the failing claims.
 
     Raises
@@ -395,7 +395,7 @@ def errata(record):
     Examples
     --------
     >>> rec = {"entries": [
-    ...     {"id": "a", "source": "Sec. IV, K", "paper": 0.2, "recomputed": 0.119, "verdict": "differs",
+    ...     {"id": "K_f3", "source": "Sec. IV, K", "paper": 0.2, "recomputed": 0.119, "verdict": "differs",
     ...      "note": "bisected"},
     ...     {"id": "e", "source": "Sec. IV, bound", "paper": 0.7125, "recomputed": 0.4028,
     ...      "verdict": "differs", "note": "n",
@@ -415,19 +415,103 @@ def errata(record):
             verdict = e["verdict"] + ("; the printed inequality fails" if ineq and not ineq["holds"] else "")
             rows.append({"where": html.escape(words(e["source"])), "printed": value_html(e["paper"]),
                          "ours": value_html(e["recomputed"], OURS_DIGITS), "verdict": verdict,
-                         "why": note_html(e["note"])})
+                         "why": note_html(e["note"]), "what": erratum_words(e)})
         elif kind == PROOF_STEP and bad:
             rows.append({"where": html.escape(words(e["source"])), "printed": value_html(e["paper"]),
-                         "ours": "", "verdict": e["verdict"], "why": note_html(e["note"])})
+                         "ours": "", "verdict": e["verdict"], "why": note_html(e["note"]),
+                         "what": erratum_words(e)})
     rows += [{"where": html.escape(c["source"]), "printed": html.escape(words(c["claim"])),
-              "ours": value_html(c["value"], 4), "verdict": c["verdict"], "why": note_html(c["reason"])}
+              "ours": value_html(c["value"], 4), "verdict": c["verdict"], "why": note_html(c["reason"]),
+              "what": erratum_words(c)}
              for c in claims_of(record) or [] if c["verdict"] == "FAIL"]
     return [{"n": k, **r} for k, r in enumerate(rows, start=1)]
 
 
+def _fmt(x, digits=4):
+    from fdsc.paper.shared.prose import num
+
+    return num(float(x), digits)
+
+
+def _bound_words(e):
+    q = e["inequality"]
+    return (f"the band peak of its gain is {_fmt(q['quantity'])}, above the printed {_fmt(q['bound'])} "
+            f"(×{_fmt(q['quantity'] / q['bound'], 4)})")
+
+
+def _table1_words(e):
+    off = [k for k, v in e["recomputed"].items() if isinstance(v, dict) and v.get("verdict") == "differs"]
+    return (f"the trends of the time shares ({', '.join(off)}) are not monotone in the simulations, as "
+            "the table says; its steady-state rows hold")
+
+
+#: One line per erratum of the paper: what is wrong, its numbers read from the record entry.
+ERRATUM_WORDS = {
+    "prop1_factorizations": lambda e: (
+        "its LF and HF products have the wrong sign (multiplied out they are ϖ_l² + ω² and −ω² − ϖ_h², "
+        f"not the weights ϖ_l² − ω² and ω² − ϖ_h²: wrong at {e['recomputed']['LF']['wrong_sign']} and "
+        f"{e['recomputed']['HF']['wrong_sign']} of {e['recomputed']['grid_points']} frequencies); the "
+        "real factorizations hold"),
+    "lemma1_gamma_squared": lambda e: "the energy bound the LMI gives is γ², not γ",
+    "gamma_slip_in_band": lambda e: (
+        f"the objectives compare an energy ratio with γ where γ² is meant: a tone in the HF range "
+        f"reaches {_fmt(e['recomputed']['energy_ratio'])} > γ = {_fmt(e['recomputed']['gamma'])}"),
+    "K_f3": lambda e: "σ and ε of its design are not printed, so the gain cannot be recomputed",
+    "bound_f1": _bound_words, "bound_f2": _bound_words, "bound_f3": _bound_words,
+    "prop1_checks": lambda e: (
+        f"fails in {e['recomputed']['failed']} of {e['recomputed']['failed'] + e['recomputed']['passed']} "
+        "checks: with MF as the in-band range, and on windows that hold the transient"),
+    "table1_checks": _table1_words,
+    "Q_1": lambda e: "γ_tol and the scale of the Q's, which their design needs, are not printed",
+    "Q_2": lambda e: "γ_tol and the scale of the Q's, which their design needs, are not printed",
+    "thm1_lyapunov_jumps": lambda e: (
+        f"the proof never compares V across a switch: V jumps up at "
+        f"{_fmt(100 * e['recomputed']['frac_up'], 2)} % of the switches, by up to "
+        f"×{_fmt(e['recomputed']['max_ratio'], 3)}"),
+    "thm1_statement1_false": lambda e: (
+        f"false: two Hurwitz modes whose Q's satisfy the LMIs diverge by ×{_fmt(e['recomputed']['multiplier'], 4)} "
+        "per turn of the printed law, without sliding"),
+    "closed_loop_output_matrix": lambda e: "C + B₂K_σ is undefined (its dimensions); C + D₂K_σ is meant",
+    "mixed_crossover": lambda e: (
+        f"FDSC's energy reaches PassC-LF's at ρ_p = {_fmt(e['recomputed']['PassC-LF'], 3)}, not at 0.2"),
+}
+
+
+def erratum_words(item) -> str:
+    """What is wrong, in one line: for a record entry from :data:`ERRATUM_WORDS` (by its id), for a
+    failing claim its measure and our value.
+
+    Parameters
+    ----------
+    item : dict
+        A record entry (with ``id``) or a claim (with ``claim`` and ``measure``).
+
+    Returns
+    -------
+    str
+        Plain text.
+
+    Raises
+    ------
+    KeyError
+        Naming the entry's id if :data:`ERRATUM_WORDS` has no line for it (an erratum is never
+        listed without saying what is wrong).
+    """
+    if "claim" in item:
+        v = item["value"]
+        ours = (", ".join(f"{words(k)}: {_fmt(x, 3)}" for k, x in v.items()) if isinstance(v, dict)
+                else _fmt(v, 4))
+        measure = words(item["measure"]).split(";")[0]
+        return f"“{words(item['claim'])}” does not hold (read as: {measure}; ours {ours})"
+    if item["id"] not in ERRATUM_WORDS:
+        raise KeyError(f"erratum_words: no line says what is wrong with the record entry {item['id']!r} "
+                       "(add it to ERRATUM_WORDS)")
+    return ERRATUM_WORDS[item["id"]](item)
+
+
 def errata_summary(record) -> str:
-    """The errata of :func:`errata` as a short numbered Markdown list (where, and the verdict),
-    the same items in the same order, for the book's summary page.
+    """The errata of :func:`errata` as a short numbered Markdown list (where, the verdict, and what
+    is wrong in one line), the same items in the same order, for the book's summary page.
 
     Parameters
     ----------
@@ -439,9 +523,11 @@ def errata_summary(record) -> str:
 
     Examples
     --------
-    >>> rec = {"entries": [{"id": "a", "source": "Sec. IV, K", "paper": 0.2, "recomputed": 0.1,
-    ...                     "verdict": "differs", "note": "n"}]}
+    >>> rec = {"entries": [{"id": "closed_loop_output_matrix", "source": "Sec. III-B, eq. (32)",
+    ...                     "paper": "C + B2 K", "recomputed": {}, "verdict": "differs", "note": "n",
+    ...                     "kind": "proof step"}]}
     >>> errata_summary(rec)
-    '1. Sec. IV, K: *differs*'
+    '1. Sec. III-B, eq. (32): *differs*: C + B₂K_σ is undefined (its dimensions); C + D₂K_σ is meant'
     """
-    return "\n".join(f"{r['n']}. {html.unescape(r['where'])}: *{r['verdict']}*" for r in errata(record))
+    return "\n".join(f"{r['n']}. {html.unescape(r['where'])}: *{r['verdict']}*: {r['what']}"
+                     for r in errata(record))
