@@ -157,8 +157,19 @@ def ladder_study(example: str, fs: FixedSet, st, seed: int, executor=None) -> di
         summarize,
     )
 
-    settings = choose_settings(example, fs, seed, n=min(N_CHOOSE, len(st.train)), executor=executor)
+    from fdsc.paper.pays.ladder_variants import (
+        N_TEST_VARIANT,
+        N_TUNE_VARIANT,
+        submit_variant_tuning,
+        variant_study,
+    )
+
     idx = [r["index"] for r in st.test]
+    small = len(idx) < N_TEST_VARIANT                 # a study smaller than the full one: variants too
+    n_tune = min(N_TUNE_VARIANT, len(idx)) if small else N_TUNE_VARIANT
+    # the variants' tunings (a few long runs) start first and share the workers with the draws
+    tuned = submit_variant_tuning(example, fs, seed, executor, n_tune)
+    settings = choose_settings(example, fs, seed, n=min(N_CHOOSE, len(st.train)), executor=executor)
     rows = map_draws(ladder_draw, [(example, i, seed, fs, settings) for i in idx], executor)
     ref = np.array([r["best fixed (x, ŵ)"] for r in rows])
     energies = {k: [r[k] for r in rows] for k in rows[0] if k != "index"}
@@ -173,16 +184,11 @@ def ladder_study(example: str, fs: FixedSet, st, seed: int, executor=None) -> di
                                        for i in idx[:m]], executor)
         noisy[str(float(snr))] = {k: [r[k] for r in res] for k in res[0]}
     noisy["direct_dwell"] = tau
-    from fdsc.paper.pays.ladder_variants import N_TEST_VARIANT, N_TUNE_VARIANT, variant_study
-
-    small = len(idx) < N_TEST_VARIANT                 # a study smaller than the full one: variants too
-
     return {"settings": settings, "test_indices": idx, "energies": energies, "ratios": ratios,
             "summary": summarize(ratios), "noisy": noisy, "noisy_draws": m,
             "exact_on_noisy_draws": {k: ratios[k][:m] for k in ("predictive", "scheduled")},
-            "variants": variant_study(example, fs, settings, seed, executor,
-                                      n_tune=min(N_TUNE_VARIANT, len(idx)) if small else N_TUNE_VARIANT,
-                                      n_test=min(N_TEST_VARIANT, len(idx)))}
+            "variants": variant_study(example, fs, settings, seed, executor, n_tune=n_tune,
+                                      n_test=min(N_TEST_VARIANT, len(idx)), tuned=tuned)}
 
 
 def _stored_law(full, example):

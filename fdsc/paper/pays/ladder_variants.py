@@ -20,7 +20,7 @@ from fdsc.paper.pays.disturbance_law_draws import SEED, _example, draw
 from fdsc.paper.pays.fixed_designs import FF_MAXITER, FixedSet, ff_poles
 
 __all__ = ["VARIANTS", "VARIANT_WORDS", "NOISE_VARIANT_TONES", "N_TUNE_VARIANT", "N_TEST_VARIANT",
-           "variant_draw", "variant_controllers", "variant_row", "variant_study"]
+           "variant_draw", "variant_controllers", "variant_row", "submit_variant_tuning", "variant_study"]
 
 #: Tones per band of a segment of the noise variant.
 NOISE_VARIANT_TONES = 40
@@ -131,8 +131,31 @@ def variant_row(example: str, variant: str, index: int, seed: int, controllers: 
     return row
 
 
+def submit_variant_tuning(example: str, fs: FixedSet, seed: int = SEED, executor=None,
+                          n_tune: int = N_TUNE_VARIANT):
+    """The variants' best fixed controllers (:func:`variant_controllers`), submitted to the
+    executor without waiting (:func:`fdsc.paper.pays.stored_study.submit_draws`).
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+    fs : FixedSet
+    seed : int, optional
+    executor : optional
+    n_tune : int, optional
+
+    Returns
+    -------
+    Pending
+        Its ``result()``: one ``{rung: controller}`` per variant, in the order of :data:`VARIANTS`.
+    """
+    from fdsc.paper.pays.stored_study import submit_draws
+
+    return submit_draws(variant_controllers, [(example, v, fs, seed, n_tune) for v in VARIANTS], executor)
+
+
 def variant_study(example: str, fs: FixedSet, settings: dict, seed: int = SEED, executor=None, *,
-                  n_tune: int = N_TUNE_VARIANT, n_test: int = N_TEST_VARIANT) -> dict:
+                  n_tune: int = N_TUNE_VARIANT, n_test: int = N_TEST_VARIANT, tuned=None) -> dict:
     """Every variant of one example: per rung the summary (median, bootstrap interval, win rate,
     share of the headroom) against the variant's best fixed controller (x, ŵ).
 
@@ -145,6 +168,10 @@ def variant_study(example: str, fs: FixedSet, settings: dict, seed: int = SEED, 
     executor : optional
     n_tune, n_test : int, optional
         Tuning and test draws per variant (the longer variant's test draws halved).
+    tuned : Pending, optional
+        The variants' controllers already submitted (:func:`submit_variant_tuning` with the same
+        arguments), so that their long tunings share the workers with other runs; default tuned
+        here.
 
     Returns
     -------
@@ -155,7 +182,7 @@ def variant_study(example: str, fs: FixedSet, settings: dict, seed: int = SEED, 
     from fdsc.paper.pays.stored_study import map_draws
 
     out = {}
-    tuned = map_draws(variant_controllers, [(example, v, fs, seed, n_tune) for v in VARIANTS], executor)
+    tuned = (submit_variant_tuning(example, fs, seed, executor, n_tune) if tuned is None else tuned).result()
     for variant, ctrls in zip(VARIANTS, tuned, strict=True):
         ctrls = ctrls | {"fs": fs}
         n = max(1, n_test // 2) if variant == "longer" else n_test

@@ -13,7 +13,7 @@ import numpy as np
 from fdsc._validation import as_choice
 from fdsc.paper.pays.fixed_designs import FixedSet
 
-__all__ = ["FULL_FILE", "map_draws", "load_full", "stored_fixed_set"]
+__all__ = ["FULL_FILE", "map_draws", "submit_draws", "load_full", "stored_fixed_set"]
 
 #: Where the full study is stored (relative to the repository root).
 FULL_FILE = Path("book") / "data" / "disturbance_law_full.json"
@@ -37,6 +37,43 @@ def map_draws(fn, args, executor):
     if hasattr(executor, "gather"):                 # a dask.distributed Client
         return executor.gather([executor.submit(fn, *a, pure=False) for a in args])
     return list(executor.map(fn, *zip(*args, strict=True)))
+
+
+class Pending:
+    """Runs submitted by :func:`submit_draws`; :meth:`result` waits for them, in order."""
+
+    def __init__(self, fn, args, futures, executor):
+        self._fn, self._args, self._futures, self._executor = fn, args, futures, executor
+
+    def result(self) -> list:
+        """``[fn(*a) for a in args]`` (here, now, without an executor)."""
+        if self._futures is None:
+            return [self._fn(*a) for a in self._args]
+        if hasattr(self._executor, "gather"):
+            return self._executor.gather(self._futures)
+        return [f.result() for f in self._futures]
+
+
+def submit_draws(fn, args, executor) -> Pending:
+    """:func:`map_draws` without waiting: the runs start on the executor now and
+    :meth:`Pending.result` collects them (without an executor they run when it is called), so that
+    a few long runs share the workers with the next map instead of leaving one idle.
+
+    Parameters
+    ----------
+    fn : callable
+    args : list of tuple
+    executor : Executor or dask.distributed.Client or None
+
+    Returns
+    -------
+    Pending
+    """
+    if executor is None:
+        return Pending(fn, args, None, None)
+    if hasattr(executor, "gather"):
+        return Pending(fn, args, [executor.submit(fn, *a, pure=False) for a in args], executor)
+    return Pending(fn, args, [executor.submit(fn, *a) for a in args], executor)
 
 
 def _stored_example(full, example) -> dict:
