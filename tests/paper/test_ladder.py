@@ -107,5 +107,36 @@ def test_every_erratum_of_the_summary_says_what_is_wrong_in_one_line():
     # the bound beside K_f3 reads its numbers from the entry: its band peak over the printed bound
     entry = {"id": "bound_f3", "inequality": {"quantity": 1.605, "bound": 0.1714, "holds": False}}
     assert "1.605, above the printed 0.1714 (×9.364)" in erratum_words(entry)
-    with pytest.raises(KeyError, match="'new_entry'"):
-        erratum_words({"id": "new_entry", "recomputed": 1.0})
+    # every erratum of the book's record has its own line (not its note's first sentence)
+    from fdsc.paper.appendix.reproduction_report import ERRATUM_WORDS
+
+    missing = [r["id"] for r in errata(record) if r["id"] is not None and r["id"] not in ERRATUM_WORDS]
+    assert missing == []
+    assert erratum_words({"id": "new_entry", "note": "The sign is wrong. More words."}) == "The sign is wrong"
+
+
+def test_runs_submitted_without_waiting_come_back_in_order_wherever_they_run():
+    # submit_draws starts the runs (on an executor) and collects them later, in the order of the
+    # arguments, as map_draws does; without an executor they run when collected
+    from concurrent.futures import ThreadPoolExecutor
+
+    from fdsc.paper.pays.stored_study import map_draws, submit_draws
+
+    calls = []
+
+    def slow_square(k, delay):
+        import time
+
+        time.sleep(delay)
+        calls.append(k)
+        return k * k
+
+    args = [(k, 0.05 * (3 - k)) for k in range(4)]
+    pending = submit_draws(slow_square, args, None)
+    assert calls == []                              # nothing runs before it is collected
+    assert pending.result() == [0, 1, 4, 9] == map_draws(slow_square, args, None)
+    with ThreadPoolExecutor(4) as pool:
+        calls.clear()
+        pending = submit_draws(slow_square, args, pool)
+        assert pending.result() == [0, 1, 4, 9]        # in the order of the arguments
+        assert sorted(calls) == [0, 1, 2, 3]

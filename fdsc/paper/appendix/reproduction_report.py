@@ -384,7 +384,8 @@ def errata(record):
     -------
     list of dict
         ``n`` and the trusted-HTML fields ``where``, ``printed``, ``ours`` (empty for words),
-        ``verdict`` and ``why``, and ``what`` (:func:`erratum_words`, plain text), printed numbers and proof steps first in the record's order, then
+        ``verdict`` and ``why``, ``what`` (:func:`erratum_words`, plain text) and ``id`` (the record
+        entry's; None for a claim), printed numbers and proof steps first in the record's order, then
         the failing claims.
 
     Raises
@@ -415,14 +416,14 @@ def errata(record):
             verdict = e["verdict"] + ("; the printed inequality fails" if ineq and not ineq["holds"] else "")
             rows.append({"where": html.escape(words(e["source"])), "printed": value_html(e["paper"]),
                          "ours": value_html(e["recomputed"], OURS_DIGITS), "verdict": verdict,
-                         "why": note_html(e["note"]), "what": erratum_words(e)})
+                         "why": note_html(e["note"]), "what": erratum_words(e), "id": e["id"]})
         elif kind == PROOF_STEP and bad:
             rows.append({"where": html.escape(words(e["source"])), "printed": value_html(e["paper"]),
                          "ours": "", "verdict": e["verdict"], "why": note_html(e["note"]),
-                         "what": erratum_words(e)})
+                         "what": erratum_words(e), "id": e["id"]})
     rows += [{"where": html.escape(c["source"]), "printed": html.escape(words(c["claim"])),
               "ours": value_html(c["value"], 4), "verdict": c["verdict"], "why": note_html(c["reason"]),
-              "what": erratum_words(c)}
+              "what": erratum_words(c), "id": None}
              for c in claims_of(record) or [] if c["verdict"] == "FAIL"]
     return [{"n": k, **r} for k, r in enumerate(rows, start=1)]
 
@@ -434,7 +435,9 @@ def _fmt(x, digits=4):
 
 
 def _bound_words(e):
-    q = e["inequality"]
+    q = e.get("inequality")
+    if not q:
+        return _note_words(e)
     return (f"the band peak of its gain is {_fmt(q['quantity'])}, above the printed {_fmt(q['bound'])} "
             f"(×{_fmt(q['quantity'] / q['bound'], 4)})")
 
@@ -491,11 +494,10 @@ def erratum_words(item) -> str:
     str
         Plain text.
 
-    Raises
-    ------
-    KeyError
-        Naming the entry's id if :data:`ERRATUM_WORDS` has no line for it (an erratum is never
-        listed without saying what is wrong).
+    Notes
+    -----
+    An entry without a line in :data:`ERRATUM_WORDS` gets the first sentence of its note (a test
+    checks that every erratum of the book's record has its own line).
     """
     if "claim" in item:
         v = item["value"]
@@ -503,10 +505,16 @@ def erratum_words(item) -> str:
                 else _fmt(v, 4))
         measure = words(item["measure"]).split(";")[0]
         return f"“{words(item['claim'])}” does not hold (read as: {measure}; ours {ours})"
-    if item["id"] not in ERRATUM_WORDS:
-        raise KeyError(f"erratum_words: no line says what is wrong with the record entry {item['id']!r} "
-                       "(add it to ERRATUM_WORDS)")
+    if item.get("id") not in ERRATUM_WORDS:
+        return _note_words(item)
     return ERRATUM_WORDS[item["id"]](item)
+
+
+def _note_words(item):
+    """The first sentence of an entry's note, as plain text."""
+    note = words(str(item.get("note", ""))).strip()
+    first = note.split(". ", 1)[0].rstrip(".")
+    return first if len(first) <= 300 else first[:297].rsplit(" ", 1)[0] + " …"
 
 
 def errata_summary(record) -> str:
