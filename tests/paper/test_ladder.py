@@ -95,7 +95,7 @@ def test_the_summary_pages_errata_are_the_reports():
 
 
 def test_every_erratum_of_the_summary_says_what_is_wrong_in_one_line():
-    from fdsc.paper.appendix.reproduction_report import erratum_words, errata, errata_summary
+    from fdsc.paper.appendix.reproduction_report import errata, errata_summary, erratum_words
 
     record = json.loads((ROOT / "book" / "data" / "reproduction.json").read_text()) \
         if (ROOT / "book" / "data" / "reproduction.json").is_file() else None
@@ -140,3 +140,39 @@ def test_runs_submitted_without_waiting_come_back_in_order_wherever_they_run():
         pending = submit_draws(slow_square, args, pool)
         assert pending.result() == [0, 1, 4, 9]        # in the order of the arguments
         assert sorted(calls) == [0, 1, 2, 3]
+
+
+def test_the_further_statements_found_false_read_their_numbers_from_the_findings():
+    from fdsc.paper.appendix.reproduction_report import FURTHER_WORDS, further_findings, further_summary
+
+    # a synthetic record: each line follows its finding's numbers, in the order of FURTHER_WORDS
+    entries = [
+        {"id": "remark3_gap", "source": "s", "paper": None, "verdict": "new", "note": "n",
+         "recomputed": {"first_sign_change_rad_s": {"a": 12.5, "b": 13.0}, "gap_at_lowest_omega": {"a": 7.0}}},
+        {"id": "paley_wiener_share", "source": "s", "paper": None, "verdict": "new", "note": "n",
+         "recomputed": {"LF": {"T=50": 0.25}, "HF": {"T=50": 0.001}}},
+        {"id": "unrelated", "source": "s", "paper": None, "verdict": "new", "note": "n", "recomputed": {}}]
+    rows = further_findings({"entries": entries})
+    assert [r["id"] for r in rows] == ["paley_wiener_share", "remark3_gap"]
+    assert [r["n"] for r in rows] == [1, 2]
+    assert "0.10 % to 25 %" in rows[0]["what"] and "between 12.5 and 13.0 rad/s" in rows[1]["what"]
+    assert further_summary({"entries": entries}).splitlines()[1].startswith("2. paper Remark 3")
+    # on the book's record every such statement is there, each with its own line
+    path = ROOT / "book" / "data" / "reproduction.json"
+    if not path.is_file():
+        pytest.skip("no built record in this checkout")
+    record = json.loads(path.read_text())
+    assert [r["id"] for r in further_findings(record)] == list(FURTHER_WORDS)
+    assert all(20 < len(r["what"]) < 400 for r in further_findings(record))
+
+
+def test_the_law_on_a_noisy_estimate_is_scored_against_the_fixed_controller_on_the_same_estimate():
+    from fdsc.paper.pays.disturbance_law_study import _noise_words
+
+    # the law loses ×1.5 over the fixed controller on the exact estimate at 0 dB, but the noise costs
+    # that fixed controller ×3 too: on the same estimate the law has half its energy
+    rob = {"draws": 3, "snr_db": {"20.0": {"ratios": [1.1, 1.1, 1.1], "fixed_ratios": [1.0, 1.0, 1.0]},
+                                  "0.0": {"ratios": [1.5, 1.5, 1.5], "fixed_ratios": [3.0, 3.0, 3.0]}}}
+    words = _noise_words(rob)
+    assert "×1.10 [1.10, 1.10] at 20 dB" in words and "×0.500 [0.500, 0.500] at 0 dB" in words
+    assert _noise_words({}) == ""

@@ -31,6 +31,7 @@ from fdsc.paper.appendix.report_counts import (
     printed_counts,
     summary,
 )
+from fdsc.paper.appendix.report_further import FURTHER_WORDS, further_findings, further_summary
 from fdsc.paper.appendix.report_law import LAW_ENTRY, ladder_rows, law_rows
 from fdsc.paper.appendix.report_values import details, note_html, number_text, page_titles, value_html, words
 from fdsc.paper.record import PAPER_FIGURES, figure_status
@@ -54,6 +55,9 @@ __all__ = [
     "finding_rows",
     "errata",
     "errata_summary",
+    "FURTHER_WORDS",
+    "further_findings",
+    "further_summary",
     "law_rows",
     "ladder_rows",
     "page_titles",
@@ -472,7 +476,8 @@ ERRATUM_WORDS = {
         f"{_fmt(100 * e['recomputed']['frac_up'], 2)} % of the switches, by up to "
         f"×{_fmt(e['recomputed']['max_ratio'], 3)}"),
     "thm1_statement1_false": lambda e: (
-        f"false: two Hurwitz modes whose Q's satisfy the LMIs diverge by ×{_fmt(e['recomputed']['multiplier'], 4)} "
+        "false: two Hurwitz modes whose Q's satisfy the LMIs diverge by "
+        f"×{_fmt(e['recomputed']['multiplier'], 4)} "
         "per turn of the printed law, without sliding"),
     "closed_loop_output_matrix": lambda e: "C + B₂K_σ is undefined (its dimensions); C + D₂K_σ is meant",
     "mixed_crossover": lambda e: (
