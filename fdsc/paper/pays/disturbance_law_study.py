@@ -15,7 +15,8 @@ from fdsc.paper.pays.fixed_designs import FixedSet
 from fdsc.paper.shared.examples import beats
 
 __all__ = ["HEADROOM_MIN", "SHARE_MIN_DRAWS", "share_clause",
-           "MAX_SWITCHES_PER_CHANGE", "TARGETS", "FAMILIES", "scored_settings", "law_key", "Study", "LAW_WORDS", "describe",
+           "MAX_SWITCHES_PER_CHANGE", "TARGETS", "FAMILIES", "scored_settings", "law_key", "Study",
+           "LAW_WORDS", "describe",
            "answer", "choose", "share_words"]
 
 #: The reference's least relative gain over the fixed controller chosen in advance for a draw to
@@ -293,13 +294,13 @@ def describe(law: dict) -> str:
     Examples
     --------
     >>> describe({"candidates": "tuned pair", "law": "cost"})
-    'the predictive-cost law switching between gains tuned for LF- and for HF-dominated segments'
+    'the predictive-cost supervisor switching between gains tuned for LF- and for HF-dominated segments'
     """
     cand = law["candidates"]
     if cand in ("gains", "ideal pair"):
         return LAW_WORDS[cand]
-    kind = "predictive-cost" if law["law"] == "cost" else "band-power"
-    return f"the {kind} law switching between {LAW_WORDS[cand]}"
+    kind = "predictive-cost supervisor" if law["law"] == "cost" else "band-power law"
+    return f"the {kind} switching between {LAW_WORDS[cand]}"
 
 
 def share_words(share) -> str:
@@ -329,16 +330,35 @@ def share_words(share) -> str:
 
 
 def _noise_words(rob):
-    """What a noisy estimate (the copies and the decisions on it) does to the law's median."""
+    """What a noisy estimate does to the law, against the fixed controller chosen in advance
+    reading the same noisy estimate (per draw, the law's ratio over that controller's own)."""
     if not rob:
         return ""
-    from fdsc.paper.shared.prose import count, times
+    from fdsc.paper.shared.prose import count
+    from fdsc.paper.shared.stats import median_ci_words
 
     per = rob["snr_db"]
     top, low = max(per, key=float), min(per, key=float)
-    return (f"; on an estimate with noise the law's median is {times(per[top]['median'])} at "
-            f"{float(top):g} dB and {times(per[low]['median'])} at {float(low):g} dB (its first "
-            f"{count(rob['draws'])} test draws)")
+
+    def same(level):
+        v = per[level]
+        return median_ci_words(np.asarray(v["ratios"], float) / np.asarray(v["fixed_ratios"], float))
+
+    return (f"; on a noisy estimate, against that fixed controller reading the same estimate, the "
+            f"law has a median {same(top)} at {float(top):g} dB and {same(low)} at {float(low):g} dB "
+            f"(its first {count(rob['draws'])} test draws)")
+
+
+def _reference_words(r):
+    """The clairvoyant reference's median over the fixed controller chosen in advance, with its
+    bootstrap interval where the study stores its per-draw ratios."""
+    from fdsc.paper.shared.prose import times
+    from fdsc.paper.shared.stats import median_ci_words
+
+    per_draw = r.get("reference_ratio", {}).get(r.get("reference_family"))
+    if per_draw:
+        return median_ci_words(per_draw)
+    return times(r["reference_median_ratio"])
 
 
 def share_clause(r: dict, share) -> str:
@@ -370,8 +390,9 @@ def share_clause(r: dict, share) -> str:
 
     n = r.get("draws_with_headroom", 0)
     if r["reference_median_ratio"] >= 1:
-        return (", more energy than that fixed controller: in median there is no gain for a "
-                "law to realize")
+        return (", more energy than that fixed controller: switching between these designs at the "
+                "true breaks does not pay (a reference, not a bound: a law that does more than "
+                "switch can go below it)")
     if share is None or n < SHARE_MIN_DRAWS:
         return f" (it gains at least 1 % on {count(n)} test draws only, too few to state a share)"
     return (f", of which the law realizes {share_words(share)} (in median over the {count(n)} draws where "
@@ -412,7 +433,7 @@ def answer(full: dict) -> dict:
             f"{pct(r['win_rate_vs_fixed_in_advance'])} of {count(r['draws_test'])} test draws)"
             f"{_noise_words(full.get('robustness', {}).get(example))}. Switching clairvoyantly at the breaks "
             f"between controllers designed for each type of segment reaches a median "
-            f"{times(r['reference_median_ratio'])}"
+            f"{_reference_words(r)}"
             + share_clause(r, share)
             + f". The paper's FDSC has a median {fdsc_words}.")
     return out

@@ -154,7 +154,8 @@ def answer(full: dict) -> str:
     -------
     str
     """
-    from fdsc.paper.shared.prose import count, pct, times, times_ci
+    from fdsc.paper.shared.prose import count, pct, times_ci
+    from fdsc.paper.shared.stats import median_ci_words
 
     parts = []
     for example in ("aircraft", "generic"):
@@ -180,7 +181,7 @@ def answer(full: dict) -> str:
             f"the static front ({front['name']}) {times_ci(front)}; the chosen controller has less energy "
             f"than they do {wins}. The closest of all the other fixed controllers on the test draws is "
             f"*{near}* ({r['fixed_controllers'][near]['family']}): median "
-            f"{times(float(np.median(rivals[near])))}, "
+            f"{median_ci_words(rivals[near])}, "
             f"and the chosen controller has less energy on {pct(near_wins)} of the draws, so the choice "
             "made on the training draws is among the best, not alone at the top."
             + _x_only(r))
@@ -189,7 +190,8 @@ def answer(full: dict) -> str:
 
 def _x_only(r) -> str:
     """The sentence on the best fixed controller reading x alone (stored studies that have it)."""
-    from fdsc.paper.shared.prose import pct, times
+    from fdsc.paper.shared.prose import pct
+    from fdsc.paper.shared.stats import median_ci_words
 
     name = r.get("fixed_in_advance_x")
     if not name or name == r["fixed_in_advance"]:
@@ -197,5 +199,5 @@ def _x_only(r) -> str:
     q = np.asarray(r["fixed_ratio"][name], dtype=float)
     more = pct(float(np.mean(q > 1.0)))
     return (f" The best fixed controller reading x alone, *{name}*, has a median "
-            f"{times(float(np.median(q)))} the energy of the chosen one (more on {more} "
+            f"{median_ci_words(q)} the energy of the chosen one (more on {more} "
             "of the draws): knowing the disturbance estimate pays by itself.")

@@ -5,6 +5,7 @@ import math
 import numpy as np
 
 from fdsc.paper.shared.plotting import _axes
+from fdsc.paper.shared.prose import times
 from fdsc.paper.shared.style import FAMILY_STYLES, MARK_COLOR, band_color, family_style, style
 
 __all__ = ["plot_law_run", "plot_ratio_cdf", "plot_fixed_plane", "plot_family_ratios",
@@ -80,7 +81,7 @@ def plot_ratio_cdf(series, reference, ax=None, *, xlim=None):
     for k, (name, v) in enumerate(series.items()):
         v = np.sort(np.asarray(v, dtype=float))
         med = float(np.median(v))
-        label = name if xlim[0] <= med <= xlim[1] else f"{name} (median ×{med:.3g}, off the axis)"
+        label = name if xlim[0] <= med <= xlim[1] else f"{name} (median {times(med)}, off the axis)"
         ax.step(v, np.arange(1, v.size + 1) / v.size, where="post", color=colors[k % len(colors)],
                 ls=styles[k % len(styles)], lw=1.5, label=label)
     ax.axvline(1.0, color="0.3", lw=0.8)
@@ -168,6 +169,13 @@ def plot_fixed_plane(points, chosen, ax=None, *, top=None, zoom=None, zoom_at=(0
                 label="chosen in advance", zorder=3)
     ax.set_xscale("log")
     ax.set_yscale("log")
+    # plain numbers on the log axes (0.4, not 4 × 10⁻¹)
+    from matplotlib.ticker import FuncFormatter
+
+    plain = FuncFormatter(lambda v, _pos: f"{v:g}")
+    for axis in (ax.xaxis, ax.yaxis):
+        axis.set_major_formatter(plain)
+        axis.set_minor_formatter(FuncFormatter(_minor_label))
     ax.set_xlabel(r"LF band peak $\gamma_{LF}$ [-]")
     ax.set_ylabel(r"HF band peak $\gamma_{HF}$ [-]")
     ax.grid(True, which="both", alpha=0.3)
@@ -193,6 +201,14 @@ def plot_fixed_plane(points, chosen, ax=None, *, top=None, zoom=None, zoom_at=(0
     return ax, off
 
 
+def _minor_label(v, _pos=None):
+    """A minor tick of a log axis labelled at mantissas 2, 3 and 5 (0.2, 0.3, 0.5, 2, 3, 5, …)."""
+    if v <= 0:
+        return ""
+    mantissa = v / 10 ** np.floor(np.log10(v))
+    return f"{v:g}" if round(mantissa) in (2, 3, 5) and abs(mantissa - round(mantissa)) < 1e-6 else ""
+
+
 def _name_members(ax, points, family):
     """Label the members of ``family`` drawn inside ``ax`` (not those an inset of ``ax`` shows)."""
     def inside(a, lf, hf):
@@ -207,15 +223,23 @@ def _name_members(ax, points, family):
         near = next((k for k in groups if abs(k[0] - fx) < 0.03 and abs(k[1] - fy) < 0.03), (fx, fy))
         groups.setdefault(near, []).append((name, lf, hf, fx))
     order = sorted(groups.values(), key=lambda m: m[0][3])
+    placed = []          # (fx, fy, above) of the labels drawn so far, in axes fractions
     for k, members in enumerate(order):
         _name, lf, hf, fx = members[0]
+        fy = ax.transAxes.inverted().transform(ax.transData.transform((lf, hf)))[1]
         crowded = k + 1 < len(order) and order[k + 1][0][3] - fx < 0.12   # a label follows close by
         # left of a point near the left edge, right-aligned near the right edge or before a close
         # neighbour, below and to the right elsewhere
-        dx, dy, ha = ((-5, -3, "right") if fx < 0.35 else (-4, -10, "right") if fx > 0.6 or crowded
-                      else (4, -10, "left"))
+        dx, dy, ha = ((6, -3, "left") if fx < 0.12 else (-5, -3, "right") if fx < 0.35
+                      else (-4, -10, "right") if fx > 0.6 or crowded else (4, -10, "left"))
+        # a label near one already drawn goes to the other side of its point (above or below)
+        clash = [a for x, y, a in placed if abs(x - fx) < 0.15 and abs(y - fy) < 0.08]
+        above = bool(clash) and not clash[-1]
+        if above:
+            dy = 8
+        placed.append((fx, fy, above))
         ax.annotate(", ".join(m[0] for m in members), (lf, hf), xytext=(dx, dy),
-                    textcoords="offset points", fontsize=7, ha=ha)
+                    textcoords="offset points", fontsize=8, ha=ha)
 
 
 def plot_family_ratios(ratios, reference, ax=None):
@@ -245,6 +269,12 @@ def plot_family_ratios(ratios, reference, ax=None):
     return ax
 
 
+#: The names of a law setting's parts in the legends, as in the law chapter's tables.
+_LAW_LABEL = {"cost": "predictive-cost supervisor", "band_power": "band-power law"}
+_CAND_LABEL = {"gains": "gains", "ideal pair": "PassC-LF/HF", "tuned pair": "tuned gains",
+               "tuned filtered pair": "tuned filtered"}
+
+
 def plot_switch_tradeoff(table, chosen, limit, ax=None, *, top=2.0):
     """Every law setting on the training draws: energy against switches per change of the
     dominating band, one marker per candidate set and law; the switching limit and the chosen
@@ -268,7 +298,7 @@ def plot_switch_tradeoff(table, chosen, limit, ax=None, *, top=2.0):
     groups = {}
     for row in table:
         cand, law = row["law"].split("/")[:2]
-        groups.setdefault(f"{cand}, {law.replace('_', '-')} law", []).append(row)
+        groups.setdefault(f"{_LAW_LABEL.get(law, law)}, {_CAND_LABEL.get(cand, cand)}", []).append(row)
     marks = ("o", "s", "^", "D", "v", "P")
     colors = ("0.45", "goldenrod", "tab:blue", "tab:cyan", "darkgreen", "#1b9e77")
     off, low = [], []
