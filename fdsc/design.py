@@ -7,7 +7,8 @@ The paper's controller (Sec. III, paper eq. (30)) switches between I state-feedb
 eq. (31)) picks the mode whose weighted FD-EPF ``[ẋ; x]ᵀ (Ψ_i ⊗ Q_i) [ẋ; x]`` is largest. The
 Q's are either given (with the least γ's for which Theorem 1's LMIs, paper eqs. (33)-(34), are
 feasible) or designed by paper Remark 4 (paper eq. (53)) around the in-band mode. The LMIs'
-solution is what the paper calls its certificate; it bounds nothing on its own (Theorem 1's
+solution is called the design's ``certificate`` for short (the paper has no such word); it
+certifies only that the LMIs are feasible and bounds nothing on its own (Theorem 1's
 statement (1) fails for modes that satisfy them, see the book's chapter on Theorem 1).
 """
 
@@ -250,8 +251,8 @@ class FDSC:
         in_band : int
             Index of the in-band mode (0-based).
         Q : sequence of (N, N) array_like, optional
-            The law's Q_i on the modes' state (N = n for gains). Given: certified by
-            :func:`~fdsc.switching.certify_q`. Omitted:
+            The law's Q_i on the modes' state (N = n for gains). Given: the least γ's for which
+            Theorem 1's LMIs are feasible with them, by :func:`~fdsc.switching.certify_q`. Omitted:
             designed by paper Remark 4 (:func:`~fdsc.switching.design_q`).
         gamma_tol : float, optional
             γ_tol of paper Remark 4 (used only when Q is omitted).

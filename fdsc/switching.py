@@ -38,7 +38,8 @@ DEFAULT_GAMMA_TOL = _defaults.DEFAULT_GAMMA_TOL
 
 @dataclass(frozen=True)
 class Theorem1Result:
-    """A solution of Theorem 1's LMIs (paper eqs. (33), (34)): what the paper calls its certificate.
+    """A solution of Theorem 1's LMIs (paper eqs. (33), (34)), called the design's certificate for
+    short (the paper has no such word): it shows only that the LMIs are feasible.
 
     The LMIs are feasible for every pair of Hurwitz modes with large enough γ_i, and the
     theorem's statement (1) does not follow from them (the book's chapter on Theorem 1 gives an

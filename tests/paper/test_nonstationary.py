@@ -124,7 +124,7 @@ def test_p2_meets_and_table(pw):
         assert p2.meets("PassC-LF")[w] == (p2.worst[w]["PassC-LF"] < 5.0)
     assert not any(p2.meets("PassC-HF").values())       # PassC-HF amplifies the LF segment by ~1e3
     rows = {r["controller"]: r for r in p2.table()}
-    assert rows["PassC-HF"]["meets gamma_tol for"] == "none"
+    assert rows["PassC-HF"]["meets γ_tol for"] == "none"
     with pytest.raises(ValueError, match="gamma_tol must be"):
         p2_localized(pw, gamma_tol=-1)
     with pytest.raises(ValueError, match="piecewise must be the SweepRuns"):

@@ -186,7 +186,7 @@ def test_compact_shortens_long_lists_and_dicts():
     assert compact({"a": {"b": [1, 2]}}) == "a: {b: [1, 2]}"
     text = compact({"s": "x" * 500})
     assert len(text) == 160 and text.endswith("…")
-    assert compact("inf") == "inf" and compact(True) == "True" and compact(np.int64(3)) == "3"
+    assert compact("inf") == "inf" and compact(True) == "yes" and compact(np.int64(3)) == "3"
 
 
 @pytest.mark.parametrize(("source", "figures"), [

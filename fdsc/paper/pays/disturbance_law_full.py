@@ -156,7 +156,6 @@ def ladder_study(example: str, fs: FixedSet, st, seed: int, executor=None) -> di
         ladder_noisy,
         summarize,
     )
-
     from fdsc.paper.pays.ladder_variants import (
         N_TEST_VARIANT,
         N_TUNE_VARIANT,

@@ -514,9 +514,9 @@ def record_part() -> RecordPart:
             f"{h.factor_lf:.3g} times below H-infinity's and its HF peak {h.loss_lf:.3g} times above; "
             f"PassC-HF's HF peak is {h.factor_hf:.4f} times H-infinity's (H-infinity is limited by "
             f"the HF band); FDSC (printed law, Theorem 1 Q's) beats the best comparator on "
-            f"{p['FDSC'].share:.0%} of the rho_p sweep (best energy ratio best-fixed/FDSC "
-            f"{p['FDSC'].best_gain:.4f}) and on {t['FDSC'].share:.0%} of the rho_t sweep "
-            f"({t['FDSC'].best_gain:.4f}); with the dwell law on {p['FDSC (dwell)'].share:.0%} and "
+            f"{p['FDSC'].share:.0%} of the rho_p sweep (its least energy ratio to the best comparator "
+            f"{1 / p['FDSC'].best_gain:.4f}) and on {t['FDSC'].share:.0%} of the rho_t sweep "
+            f"({1 / t['FDSC'].best_gain:.4f}); with the dwell law on {p['FDSC (dwell)'].share:.0%} and "
             f"{t['FDSC (dwell)'].share:.0%}")
     return RecordPart((entry("generic_example", "our addition: a generic example (not in the paper)", None,
                              recomputed, "new", note),))

@@ -586,8 +586,9 @@ def record_part() -> RecordPart:
         f"reaches at best {num(best2)}. Theorem 1's LMIs extended to three modes are feasible "
         f"down to γ_MF = {num(float(cert.design.gammas[1]), 4)} with the Remark 4 design (K_f2's "
         "MF peak " f"{num(cert.mf_peak, 4)}), but its law sits in the HF mode most of the time; "
-        "with Q = I they are feasible only for loose γ's "
-        f"({', '.join(num(float(g)) for g in cert.equal_q.gammas)}).")
+        "with Q = I they are feasible only for loose γ's ("
+        + "; ".join(f"γ_{m} = {num(float(g))}" for m, g in zip(("LF", "MF", "HF"), cert.equal_q.gammas,
+                                                               strict=True)) + ").")
     return RecordPart((entry("three_mode", "Theorem 1 with I = 3 (K_f1, K_f2, K_f3), Sec. III-IV "
                              "(not in the paper)", None, rec, "new", note,
                              horizon=table.horizon, dt=table.dt),))

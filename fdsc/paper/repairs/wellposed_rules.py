@@ -275,7 +275,9 @@ class LawStudy:
         out["hya_mid_sw"] = _pair(self.switches[("hysteresis_abs", grid[0], "LF")],
                                   self.switches_half[("hysteresis_abs", grid[0], "LF")])
         w_ok = [q for q in LAW_GRIDS["window"] if self.well_posed("window", q)]
-        out["win_ok"] = ", ".join(_param(q) for q in w_ok) if w_ok else "none"
+        w_words = [_param(q) for q in w_ok]
+        out["win_ok"] = (" and ".join([", ".join(w_words[:-1]), w_words[-1]] if len(w_words) > 1 else w_words)
+                         if w_ok else "none")
         w1 = 1.0
         out |= {"win1": _param(w1),
                 "win1_rel_LF": num(self.energy[("window", w1, "LF")] / self.energy[("printed", 0.0, "LF")]),

@@ -346,7 +346,7 @@ class P2Result:
         for n in SWEEP_NAMES:
             ok = [f"{w:g} s" for w, met in self.meets(n).items() if met]
             rows.append({"controller": n, **{f"T_l = {w:g} s": self.worst[w][n] for w in self.windows},
-                         "meets gamma_tol for": ", ".join(ok) or "none"})
+                         "meets γ_tol for": ", ".join(ok) or "none"})
         return rows
 
     def to_record(self) -> RecordPart:

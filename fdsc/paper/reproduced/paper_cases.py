@@ -287,12 +287,12 @@ class Baselines:
         any_win = int(np.sum(beats(np.min([ratios[k] for k in SWITCHED], axis=0))))
         return (f"A switched controller has less energy than every fixed one in {any_win} of the {n} "
                 f"cases; the best variant, {best}, has "
-                f"{r.min():.3g} to {r.max():.3g} times the energy of the best fixed controller (median "
-                f"{np.median(r):.3g}), and the best fixed controller is "
+                f"{r.min():.3g} to {r.max():.3g} times the energy of the best comparator of the case "
+                f"(median {np.median(r):.3g}), and the best comparator is "
                 + ", ".join(f"{k} in {v}" for k, v in fixed.items()) + " of the cases. "
                 f"The ideal segment law (PassC-LF on the LF piece, PassC-HF on the HF pieces of the "
                 f"ρ_t family) has {self.ideal_ratio().min():.3g} to {self.ideal_ratio().max():.3g} "
-                f"times the energy of the best fixed controller: it beats it at "
+                f"times the energy of the best comparator of the case: it beats it at "
                 f"{int(np.sum(beats(self.ideal_ratio())))} of {self.ideal_ratio().size} values of ρ_t.")
 
     def hf_best_gain(self) -> dict:

@@ -331,7 +331,7 @@ class HFBest:
             f"in-band gain {self.in_band:.4f} "
             f"(LMI {self.gamma_lmi:.4f}) and out-of-band peak {self.out_of_band:.4f}, "
             f"against {self.K_f3_in_band:.4f} and {self.K_f3_out_of_band:.1f} for the printed "
-            f"K_f3 ('paper' holds K_f3's values recomputed from the printed gain)."),))
+            f"K_f3 (its values recomputed from the printed gain)."),))
 
 
 @cached

@@ -239,8 +239,8 @@ def _q_entries(table):
         "needs (Q enters Theorem 1 only through differences); ours: Remark 4 design with "
         f"γ_tol = {DEFAULT_GAMMA_TOL:g} (in-band mode PassC-HF): it reaches γ_2 = "
         f"{ours.gammas[1]:.4f} by driving Q_1 to the margin. With the printed Q's, Theorem 1's "
-        "LMIs are feasible only for γ's of at least "
-        f"({num(float(p.gamma_1), 4)}, {num(float(p.gamma_2), 4)}).")
+        f"LMIs are feasible only for γ_1 ≥ {num(float(p.gamma_1), 4)} and "
+        f"γ_2 ≥ {num(float(p.gamma_2), 4)}.")
         for k, name in enumerate(("Q_1", "Q_2"))))
 
 

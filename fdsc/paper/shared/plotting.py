@@ -218,6 +218,21 @@ def plot_hf_sigma_scan(result, ax=None, *, reference=True):
     return ax
 
 
+def _gain_tex(label):
+    """Gain names of a legend in math type: ``K_out = K_f1`` -> ``$K^{out}$ = $K_{f_1}$``.
+
+    Examples
+    --------
+    >>> _gain_tex("K_out = K_f1"), _gain_tex("K_out = K_e")
+    ('$K^{out}$ = $K_{f_1}$', '$K^{out}$ = $K_e$')
+    """
+    import re
+
+    label = label.replace("K_out", "$K^{out}$")
+    label = re.sub(r"K_f(\d)", r"$K_{f_\1}$", label)
+    return re.sub(r"K_e\b", "$K_e$", label)
+
+
 def plot_gap(result, ax=None, *, band_limits=None):
     """paper Remark 3's gap function for each candidate out-of-band gain (semilog-x, zero marked).
 
@@ -236,8 +251,13 @@ def plot_gap(result, ax=None, *, band_limits=None):
     matplotlib Axes
     """
     ax = _axes(ax)
-    for label, g in result.gap.items():
-        ax.semilogx(result.omega, g, label=label)
+    # curves that coincide over most frequencies: each drawn thinner and with its own dashes on top
+    # of the previous ones, so that a curve under another still shows
+    dashes = ("-", "--", ":", "-.")
+    widths = (3.2, 2.2, 1.6, 1.2)
+    for k, (label, g) in enumerate(result.gap.items()):
+        ax.semilogx(result.omega, g, label=_gain_tex(label), ls=dashes[k % len(dashes)],
+                    lw=widths[k % len(widths)])
     ax.axhline(0, color="0.4", lw=0.8)
     for wb in result.band_limits if band_limits is None else band_limits:
         ax.axvline(wb, color="0.5", ls=":", lw=1)

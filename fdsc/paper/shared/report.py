@@ -14,8 +14,9 @@ def fmt(value, spec=".4g"):
 
     Parameters
     ----------
-    value : float, int, str or None
-        The cell's value; infinities print as ∞, NaN and None as a dash, text as is.
+    value : float, int, bool, str or None
+        The cell's value; infinities print as ∞, NaN and None as a dash, booleans as yes/no, a
+        number that the spec puts in e-notation as m × 10ᵉ, text as is.
     spec : str, optional
         Format specification of a finite number.
 
@@ -25,17 +26,27 @@ def fmt(value, spec=".4g"):
 
     Examples
     --------
-    >>> fmt(0.123456), fmt(float("inf")), fmt(float("nan")), fmt("LF")
-    ('0.1235', '∞', '—', 'LF')
+    >>> fmt(0.123456), fmt(float("inf")), fmt(float("nan")), fmt("LF"), fmt(None), fmt(True)
+    ('0.1235', '∞', '—', 'LF', '—', 'yes')
+    >>> fmt(15280.4), fmt(-2.5e-7, ".2g")
+    ('1.528 × 10⁴', '−2.5 × 10⁻⁷')
     """
-    if isinstance(value, bool) or value is None:
-        return str(value)
+    if value is None:
+        return "—"
+    if isinstance(value, bool | np.bool_):
+        return "yes" if value else "no"
     if isinstance(value, int | float):
         if math.isnan(value):
             return "—"  # nothing to show (e.g. no closed form)
         if math.isinf(value):
             return "∞" if value > 0 else "−∞"
-        return format(value, spec)
+        text = format(value, spec)
+        mant, e, exp = text.partition("e")
+        if e and exp.lstrip("+-").isdigit():   # 1.528e+04 -> 1.528 × 10⁴, as the prose prints it
+            from fdsc.paper.shared.prose import _SUPERSCRIPT
+
+            return f"{mant} × 10{str(int(exp)).translate(_SUPERSCRIPT)}".replace("-", "−")
+        return text
     return str(value)
 
 
