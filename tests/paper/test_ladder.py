@@ -148,7 +148,8 @@ def test_the_further_statements_found_false_read_their_numbers_from_the_findings
     # a synthetic record: each line follows its finding's numbers, in the order of FURTHER_WORDS
     entries = [
         {"id": "remark3_gap", "source": "s", "paper": None, "verdict": "new", "note": "n",
-         "recomputed": {"first_sign_change_rad_s": {"a": 12.5, "b": 13.0}, "gap_at_lowest_omega": {"a": 7.0}}},
+         "recomputed": {"first_sign_change_rad_s": {"a": 12.5, "b": 13.0},
+                        "gap_at_lowest_omega": {"a": 7.0}}},
         {"id": "paley_wiener_share", "source": "s", "paper": None, "verdict": "new", "note": "n",
          "recomputed": {"LF": {"T=50": 0.25}, "HF": {"T=50": 0.001}}},
         {"id": "unrelated", "source": "s", "paper": None, "verdict": "new", "note": "n", "recomputed": {}}]

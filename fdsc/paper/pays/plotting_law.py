@@ -4,7 +4,7 @@ import math
 
 import numpy as np
 
-from fdsc.paper.shared.plotting import _axes
+from fdsc.paper.shared.plotting import _axes, _minor_label, plain_log_ticks
 from fdsc.paper.shared.prose import times
 from fdsc.paper.shared.style import FAMILY_STYLES, MARK_COLOR, band_color, family_style, style
 
@@ -98,7 +98,8 @@ def plot_ratio_cdf(series, reference, ax=None, *, xlim=None):
     ax.set_ylabel("share of test draws [-]")
     ax.set_ylim(0, 1)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8, loc="lower right")
+    # below the axes: inside, it would cover the far curves of one example or another
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2)
     return ax
 
 
@@ -201,14 +202,6 @@ def plot_fixed_plane(points, chosen, ax=None, *, top=None, zoom=None, zoom_at=(0
     return ax, off
 
 
-def _minor_label(v, _pos=None):
-    """A minor tick of a log axis labelled at mantissas 2, 3 and 5 (0.2, 0.3, 0.5, 2, 3, 5, …)."""
-    if v <= 0:
-        return ""
-    mantissa = v / 10 ** np.floor(np.log10(v))
-    return f"{v:g}" if round(mantissa) in (2, 3, 5) and abs(mantissa - round(mantissa)) < 1e-6 else ""
-
-
 def _name_members(ax, points, family):
     """Label the members of ``family`` drawn inside ``ax`` (not those an inset of ``ax`` shows)."""
     def inside(a, lf, hf):
@@ -264,6 +257,7 @@ def plot_family_ratios(ratios, reference, ax=None):
     ax.set_yticks(range(1, len(labels) + 1), labels, fontsize=8)
     ax.axvline(1.0, color=MARK_COLOR, lw=0.8)
     ax.set_xscale("log")
+    plain_log_ticks(ax.xaxis)
     ax.set_xlabel(f"energy / energy of {reference} (5–95 % whiskers) [-]")
     ax.grid(True, which="both", axis="x", alpha=0.3)
     return ax

@@ -24,6 +24,7 @@ from fdsc.paper.shared.plotting_runs import (
 from fdsc.paper.shared.style import STYLES, VERDICT_COLORS, band_color, style
 
 __all__ = [
+    "plain_log_ticks",
     "plot_psi_weights",
     "plot_dominance_vs_rho",
     "plot_localized_dominance",
@@ -216,6 +217,37 @@ def plot_hf_sigma_scan(result, ax=None, *, reference=True):
     ax.set_ylabel(r"$\sigma_{max}$ peak [-]")
     ax.legend(fontsize=8)
     return ax
+
+
+def plain_log_ticks(axis, nbins=6):
+    """Plain tick labels on a log axis (1.2, 1.4, … or 0.5, 1, 2, not 2 × 10⁰): on a range of less
+    than a factor 3, evenly spaced ticks; on a wider one, the decades and the 2, 3 and 5 between.
+
+    Parameters
+    ----------
+    axis : matplotlib Axis
+        A log-scaled axis whose data limits are set.
+    nbins : int, optional
+        The most ticks on a narrow range.
+    """
+    from matplotlib.ticker import FuncFormatter, MaxNLocator, NullFormatter
+
+    lo, hi = sorted(axis.get_view_interval())
+    if lo > 0 and hi / lo < 3:
+        axis.set_major_locator(MaxNLocator(nbins))
+        axis.set_major_formatter(FuncFormatter(lambda v, _pos: f"{v:g}"))
+        axis.set_minor_formatter(NullFormatter())
+    else:
+        axis.set_major_formatter(FuncFormatter(lambda v, _pos: f"{v:g}"))
+        axis.set_minor_formatter(FuncFormatter(_minor_label))
+
+
+def _minor_label(v, _pos=None):
+    """A minor tick of a log axis labelled at mantissas 2, 3 and 5 (0.2, 0.3, 0.5, 2, 3, 5, …)."""
+    if v <= 0:
+        return ""
+    mantissa = v / 10 ** np.floor(np.log10(v))
+    return f"{v:g}" if round(mantissa) in (2, 3, 5) and abs(mantissa - round(mantissa)) < 1e-6 else ""
 
 
 def _gain_tex(label):

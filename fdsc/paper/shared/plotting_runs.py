@@ -162,7 +162,7 @@ def plot_sigma_timeline(data, ax: plt.Axes | None = None) -> plt.Axes:
     for k, (label, v) in enumerate(variants):
         ax.fill_between(data.t, k, k + 0.8 * v.sigma, step="post", alpha=0.8,
                         color=style(as_controller.get(label, label), k)["color"],
-                        label=f"{_label(label)}: {v.switches} switches")
+                        label=f"{_label(label)}: {v.switches:,} switches")
     for b in data.breaks[1:-1]:
         ax.axvline(b, color="k", ls=":", lw=1)
     ax.set_yticks([k + 0.4 for k in range(len(variants))], [_label(lab) for lab, _ in variants],
