@@ -35,9 +35,18 @@ def _gap_words(e):
 def _chatter_words(e):
     run = e["recomputed"]["paper Q, measured ẋ"]
     return (f"“sliding motion very rarely occurs” does not hold for the printed law with the measured ẋ: "
-            f"on the piecewise disturbance of paper eq. (58) it switches {run['switches']:,} times in "
-            f"100 s, {_fmt(100 * run['single_sample_dwell'], 2)} % of its dwells one sample long "
+            f"on the piecewise disturbance of paper eq. (58) it switches {run['switches']:,} times in one "
+            f"run, {_fmt(100 * run['single_sample_dwell'], 2)} % of its dwells one sample long "
             "(sliding, realized as chattering), outside Theorem 1's assumptions")
+
+
+def _hysteresis_words(e):
+    h = e["recomputed"]["hysteresis"]
+    grid = ", ".join(_fmt(p, 2) for p in h["parameters"])
+    return (f"a hysteresis, which the remark offers to avoid sliding, does not: with relative margins "
+            f"{grid} the printed law still switches {h['switches']['LF'][-1]:,} times under the LF "
+            f"disturbance, and {h['switches_half_dt']['LF'][-1]:,} times when the step halves (a "
+            "minimum dwell time does avoid it)")
 
 
 def _short_window_words(e):
@@ -62,6 +71,7 @@ FURTHER_WORDS = {
     "paley_wiener_share": ("Definition 1, Lemma 1 (2), Proposition 1 1)", _pw_words),
     "remark3_gap": ("paper Remark 3, the gap function", _gap_words),
     "law_chattering": ("paper Remark 7", _chatter_words),
+    "hysteresis_dwell": ("paper Remark 7, its remedies", _hysteresis_words),
     "prop1_short_windows": ("Sec. III, Proposition 1, statement 2)", _short_window_words),
     "thm1_statement3": ("Theorem 1, statement (3)", _statement3_words),
     "generic_example": ("Sec. I", lambda e: (
