@@ -318,7 +318,8 @@ def test_the_ladder_rows_give_a_share_only_where_a_rung_takes_headroom():
         "predictive": row(0.92, 0.69), "FDSC": row(334.0, -46.57),
         "best fixed (x, ŵ)": {"median": 1.0, "low": 1.0, "high": 1.0, "win_rate": 0.0, "draws": 250}}}}}
     rows = ladder_rows(full)
-    assert sorted(r["share"] for r in rows) == ["", "69 %", "none"]
+    # a rung that takes headroom carries its interval; one that loses says none, without one
+    assert sorted(r["share"] for r in rows) == ["", "69 % [59 %, 79 %]", "none"]
     # the reference is not said to win on 0 % of the draws against itself
     assert sorted(r["wins"] for r in rows) == ["50 %", "50 %", "the reference"]
 

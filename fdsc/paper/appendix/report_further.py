@@ -49,13 +49,6 @@ def _hysteresis_words(e):
             "minimum dwell time does avoid it)")
 
 
-def _short_window_words(e):
-    r = e["recomputed"]
-    return (f"statement 2) fails on {r['failed']} of {r['windows']} finite windows from rest (the "
-            f"longest failing one {_fmt(r['longest_failing_window_periods'], 2)} periods of the slowest "
-            "tone): the proof transforms ẋ as jωX, which needs x(0) = 0 or a steady state")
-
-
 def _statement3_words(e):
     runs = e["recomputed"].values()
     held = sum(bool(r["below"]) for r in runs)
@@ -72,7 +65,6 @@ FURTHER_WORDS = {
     "remark3_gap": ("paper Remark 3, the gap function", _gap_words),
     "law_chattering": ("paper Remark 7", _chatter_words),
     "hysteresis_dwell": ("paper Remark 7, its remedies", _hysteresis_words),
-    "prop1_short_windows": ("Sec. III, Proposition 1, statement 2)", _short_window_words),
     "thm1_statement3": ("Theorem 1, statement (3)", _statement3_words),
     "generic_example": ("Sec. I", lambda e: (
         "the introduction promises simulations on “a generic and a common benchmark model”; only the "

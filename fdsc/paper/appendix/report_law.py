@@ -9,7 +9,7 @@ recomputes the same procedure on the first few of its draws when the book is bui
 import html
 
 from fdsc.paper.appendix.report_counts import entries_of
-from fdsc.paper.shared.prose import count, headroom_pct, pct, times, times_ci
+from fdsc.paper.shared.prose import count, headroom_pct, pct, share_pct, times, times_ci
 
 __all__ = ["LAW_ENTRY", "law_rows", "ladder_rows"]
 
@@ -92,6 +92,14 @@ def law_rows(record, full=None, *, fresh=True):
     return rows
 
 
+def _share_words(share):
+    """The median share of the headroom with its interval (where it takes any), or nothing."""
+    if not share:
+        return ""
+    ci = f" [{share_pct(share[1])}, {share_pct(share[2])}]" if share[0] > 0 else ""
+    return headroom_pct(share[0]) + ci
+
+
 def ladder_rows(full):
     """The ladder of the stored study (every rung over the best fixed controller with equal
     information), per example and rung, labelled with its commit.
@@ -130,5 +138,5 @@ def ladder_rows(full):
             rows.append({"example": _LAW_EXAMPLES[example], "rung": html.escape(RUNG_WORDS[rung]),
                          "median": times_ci(s),
                          "wins": "the reference" if rung == REFERENCE else pct(s["win_rate"]),
-                         "share": headroom_pct(share[0]) if share else ""})
+                         "share": _share_words(share)})
     return rows

@@ -401,12 +401,13 @@ def answer(full: dict) -> dict:
         s = lad["summary"]
         best = best_realizable(s)
         b, lim, x = s[best], s["limit"], s["best fixed (x)"]
-        share = b["headroom_share"][0]
+        hs = b["headroom_share"]
+        share = f"{share_pct(hs[0])} [{share_pct(hs[1])}, {share_pct(hs[2])}]"
         out[example] = (
             f"the best realizable controller is the {RUNG_WORDS[best]}: a median {times_ci(b)} the energy "
             f"of the best fixed controller reading x and ŵ, less energy on {pct(b['win_rate'])} of "
             f"{count(b['draws'])} test draws, where no controller can go below the non-causal "
-            f"limit's {times_ci(lim)}; per draw it takes a median {share_pct(share)} of that headroom (in "
+            f"limit's {times_ci(lim)}; per draw it takes a median {share} of that headroom (in "
             f"log). The best fixed controller reading x alone has {times_ci(x)}.")
     return out
 

@@ -176,8 +176,8 @@ def record_part() -> RecordPart:
               None, hd, "new",
               "Energies and switch counts at dt and dt/2 of the hysteresis (relative and absolute "
               "margin) and minimum-dwell-time laws on the paper's stationary, mixed (ρ_p = 0.1) "
-              "and piecewise (T = 500 s, ρ_t = 0.2) cases; a law is well-posed here if its "
-              "switch count does not grow when dt halves."),
+              "and piecewise (T = 500 s, ρ_t = 0.2) cases; a law passes the step-halving test if "
+              "no case's switch count grows by more than half (or two switches) when dt halves."),
         entry("eef_switching", "paper Remark 6 (an FD-EEF-based law; nothing printed)", None,
               {"window": _law_record(study, "window"), "reference": reference,
                "cases": list(LAW_CASES), "dt": study.dt}, "new",
