@@ -4,13 +4,12 @@ its numbers read from the record's finding; shown on the landing page and in the
 errata."""
 
 from fdsc.paper.appendix.report_counts import entries_of
+from fdsc.paper.shared.prose import num
 
 __all__ = ["FURTHER_WORDS", "further_findings", "further_summary"]
 
 
 def _fmt(x, digits=4):
-    from fdsc.paper.shared.prose import num
-
     return num(float(x), digits)
 
 

@@ -9,7 +9,7 @@ recomputes the same procedure on the first few of its draws when the book is bui
 import html
 
 from fdsc.paper.appendix.report_counts import entries_of
-from fdsc.paper.shared.prose import count, headroom_pct, pct, share_pct, times, times_ci
+from fdsc.paper.shared.prose import count, headroom_pct, pct, share_ci, times, times_ci
 
 __all__ = ["LAW_ENTRY", "law_rows", "ladder_rows"]
 
@@ -96,8 +96,7 @@ def _share_words(share):
     """The median share of the headroom with its interval (where it takes any), or nothing."""
     if not share:
         return ""
-    ci = f" [{share_pct(share[1])}, {share_pct(share[2])}]" if share[0] > 0 else ""
-    return headroom_pct(share[0]) + ci
+    return share_ci(share) if share[0] > 0 else headroom_pct(share[0])
 
 
 def ladder_rows(full):

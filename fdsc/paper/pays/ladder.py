@@ -393,7 +393,7 @@ def answer(full: dict) -> dict:
     dict
         ``{example: str}``.
     """
-    from fdsc.paper.shared.prose import count, pct, share_pct, times_ci
+    from fdsc.paper.shared.prose import count, pct, share_ci, times_ci
 
     out = {}
     for example in ("aircraft", "generic"):
@@ -401,8 +401,7 @@ def answer(full: dict) -> dict:
         s = lad["summary"]
         best = best_realizable(s)
         b, lim, x = s[best], s["limit"], s["best fixed (x)"]
-        hs = b["headroom_share"]
-        share = f"{share_pct(hs[0])} [{share_pct(hs[1])}, {share_pct(hs[2])}]"
+        share = share_ci(b["headroom_share"])
         out[example] = (
             f"the best realizable controller is the {RUNG_WORDS[best]}: a median {times_ci(b)} the energy "
             f"of the best fixed controller reading x and ŵ, less energy on {pct(b['win_rate'])} of "

@@ -14,7 +14,7 @@ from numbers import Integral, Real
 import numpy as np
 
 __all__ = ["num", "count", "times", "span", "pct", "excess", "matrix_text", "glue_numbers",
-           "reading_minutes", "WORDS_PER_MINUTE", "times_ci", "share_pct", "headroom_pct"]
+           "reading_minutes", "WORDS_PER_MINUTE", "times_ci", "share_pct", "share_ci", "headroom_pct"]
 
 _SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
 
@@ -374,3 +374,24 @@ def share_pct(x) -> str:
     """
     v = round(100 * _real(x, "x"))
     return f"{'−' if v < 0 else ''}{abs(v)} %"
+
+
+def share_ci(share) -> str:
+    """A median share of the headroom with its bootstrap interval, ``69 % [65 %, 73 %]``.
+
+    Parameters
+    ----------
+    share : sequence of 3 floats
+        Median, low and high (as stored in a ladder summary's ``headroom_share``).
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> share_ci([0.69, 0.65, 0.73])
+    '69 % [65 %, 73 %]'
+    """
+    m, lo, hi = share
+    return f"{share_pct(m)} [{share_pct(lo)}, {share_pct(hi)}]"
