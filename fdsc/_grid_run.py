@@ -15,11 +15,7 @@ from .decisions import SupervisedRun
 from .exceptions import UnstableRunWarning
 from .signals import Piecewise, Sinusoids
 
-__all__ = ["shift_signal", "STIFF_STEP"]
-
-#: A stepped run (``supervise(dt=...)``) warns when a loop's fastest mode λ has |λ| dt above this:
-#: the transients at the switches are then shorter than a step.
-STIFF_STEP = 0.5
+__all__ = ["shift_signal"]
 
 
 def shift_signal(d, tau: float):
@@ -79,21 +75,6 @@ def _run_on_grid(prep, sigma, mu, dt):
         if isinstance(sig, Piecewise):
             for t in sig.breaks:
                 break_index(t, 0.0, dt, N, "supervise: ")
-    # the modes a run excites: those of the loop it starts in (from x0 ≠ 0) and of the loops
-    # switched to (direct); through copies only the plant's own loop A + B2 K0 at a switch (the
-    # copies run on ŵ whatever σ does)
-    if sup.K0 is None:
-        excited = [prep.loops[int(m)].A for m in set(sequence[1:].tolist())]
-    else:
-        excited = [sup.plant.A + sup.plant.B2 @ sup.K0] if change.size else []
-    if np.any(prep.x0):
-        excited.append(prep.loops[int(sequence[0])].A)
-    fastest = max([float(np.abs(np.linalg.eigvals(M)).max()) for M in excited] + [0.0])
-    if fastest * dt > STIFF_STEP:
-        warnings.warn(f"supervise: a loop the run is in has a mode at {fastest:.3g} /s, so "
-                      f"|λ| dt = {fastest * dt:.3g} > {STIFF_STEP:g}: the transient that follows the start "
-                      "or a switch is shorter than a step, and Simpson's rule on the grid misses its "
-                      "energy; run it exactly (dt=None)", RuntimeWarning, stacklevel=3)
     bounds = [0, *(change * block).tolist(), N - 1]
     x = prep._xstart.copy()                              # the run scaled (Prepared's Notes)
     limit = _divergence.threshold([lp.A for lp in prep.loops], prep.loops[0].B, x, prep._d)

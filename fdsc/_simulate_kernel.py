@@ -60,8 +60,8 @@ def break_index(b, t0, dt, N, where=""):
 
 def check_resolved(d, dt, where=""):
     """Refuse a disturbance with a tone at or above the Nyquist frequency π/dt of the grid: its
-    samples are those of a slower tone (the states stay exact, but d on the grid, the law's
-    inputs and every energy by Simpson's rule on the samples would be of that slower tone)."""
+    samples are those of a slower tone (the states and energies stay exact, but d on the grid
+    and the law's inputs would be of that slower tone)."""
     parts = d.parts if isinstance(d, Piecewise) else (d,)
     dt = float(dt)
     for j, part in enumerate(parts):

@@ -31,18 +31,25 @@ def _neumaier_add(s, c, b):
 
 
 def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
-               kind, seg_start, seg_nt, omega, amp, phase, Gr, Gi, Rre, Rim, xmax,
+               kind, seg_start, seg_nt, omega, amp, phase, Gr, Gi, Rre, Rim, xmax, Qe, Rx, split,
                u, G0, G1, cum_every, trace_every, dwell_edges, rparams, ring, ring_sum, istate,
                sums, share_steps, dwell_counts, cum, tr_lo, tr_hi, tr_share, x_out, info, shape):
     """One run (see the docstring of :mod:`fdsc.stream`). Writes every result into the output
     arguments.
 
-    ``sums`` = [∫zᵀz, ∫d², switches, ‖x‖∞ where the divergence monitor fired]; ``info`` =
+    ``sums`` = [∫zᵀz, 0 (∫d² is formed by the caller, in closed form), switches, ‖x‖∞ where
+    the divergence monitor fired]; ``info`` =
     [diverged point or −1, final mode, point where the monitor fired or −1]: the monitor
     (:mod:`fdsc._divergence`) compares ``max_r |x_r|`` with ``xmax`` once per block of
     :data:`_SUM_BLOCK` points and at the last point. Points
     are k = 0 … N−1; step k goes from point k to point k+1 and uses
     the mode chosen at point k and the disturbance segment that contains point k.
+
+    The energy of step k is exact: ``ηᵀ Q η`` with ``η = [R x_k; a∘c; a∘s]`` (tones: the
+    oscillators' cos and sin at t_k times the amplitudes) or ``[R x_k; u_k; u_{k+1} − u_k]`` (a
+    held input), ``Q = Qe[segment, mode]`` (W × W, symmetric) and ``R =
+    Rx[mode]`` where ``split[mode]`` (:mod:`fdsc._step_energy`). The coarse grid keeps the sum of
+    the steps before each of its points.
 
     ``shape`` specializes the compiled loop (see :func:`_shape_tag`): seven tuples whose
     lengths, constants of the compiled code, are n, p, the number of modes, the length of a
@@ -64,6 +71,8 @@ def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
     if len(shape[6]) > 0:
         trace_every = 0
     K = Rre.shape[1]
+    W = n + 2 * T           # the step energy's η = [R x; a∘c; a∘s] or [R x; u; Δu; 0 …]
+    eta = np.zeros(W)
     # ξ = [x; d] (first-order law) or [x; d; ḋ] (second-order law): nt2 = r (r + 1) / 2
     r_xi = n + 1 if nt2 == (n + 1) * (n + 2) // 2 else n + 2
     prod = np.empty(nt2)
@@ -98,23 +107,11 @@ def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
     k_done = 0
     cum_next = 0 if cum_every > 0 else -1
     n_edges = dwell_edges.shape[0]
-    # Simpson sums (weights 1, 4, 2, 4, …) with Neumaier compensation, and the last two samples
+    # the step energies' sum: plain within blocks, Neumaier-compensated between them
     sz = 0.0
     cz = 0.0
-    sd = 0.0
-    cd = 0.0
-    fz1 = 0.0       # f at the last three points (1 = latest)
-    fz2 = 0.0
-    fz3 = 0.0
-    fd1 = 0.0
-    fd2 = 0.0
-    fd3 = 0.0
-    sz_half = 0.0   # the Simpson sum over points < N − 2 (for an even number of points)
-    sd_half = 0.0
-    bz = 0.0        # the current block's plain sums
-    bd = 0.0
+    bz = 0.0        # the current block's plain sum
     kblock = 0
-    wgt = 1.0
     diverged = -1
     grew = -1
     xgrew = 0.0
@@ -200,27 +197,56 @@ def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
                 share_start = k
             prev = choice
         m = prev
-        # output and integrands at point k
-        fz = 0.0
+        # the exact energy of step k → k + 1 (none after the last point)
+        ek = 0.0
+        if k < N - 1:
+            if split[m]:
+                for r in range(n):
+                    acc = 0.0
+                    for c in range(n):
+                        acc += Rx[m, r, c] * x[c]
+                    eta[r] = acc
+            else:
+                for r in range(n):
+                    eta[r] = x[r]
+            if kind == 0:
+                for j in range(T):
+                    if j < nt:
+                        eta[n + j] = amp[s, j] * pre[j]
+                        eta[n + T + j] = amp[s, j] * pim[j]
+                    else:
+                        eta[n + j] = 0.0
+                        eta[n + T + j] = 0.0
+                si = s
+            else:
+                eta[n] = u[k]
+                eta[n + 1] = u[k + 1] - u[k] if kind == 2 else 0.0
+                si = 0
+            for a in range(W):
+                row = 0.0
+                for b_ in range(W):
+                    row += Qe[si, m, a, b_] * eta[b_]
+                ek += eta[a] * row
+        else:
+            for r in range(n):
+                ek += x[r] * x[r]       # only to detect an overflowed state at the last point
+        if not ek < np.inf:
+            diverged = k
+            break
+        if k == N - 1:
+            ek = 0.0
         if trace_every > 0:
             b = k // trace_every
             first = k % trace_every == 0
             tr_share[b, m] += 1.0
-        for r in range(p):
-            zr = D[r] * dk
-            for c in range(n):
-                zr += C[m, r, c] * x[c]
-            fz += zr * zr
-            if trace_every > 0:
+            for r in range(p):
+                zr = D[r] * dk
+                for c in range(n):
+                    zr += C[m, r, c] * x[c]
                 if first or zr < tr_lo[b, n + r]:
                     tr_lo[b, n + r] = zr
                 if first or zr > tr_hi[b, n + r]:
                     tr_hi[b, n + r] = zr
-        if not fz < np.inf:
-            diverged = k
-            break
-        fd = dk * dk
-        if trace_every > 0:
             for r in range(n):
                 if first or x[r] < tr_lo[b, r]:
                     tr_lo[b, r] = x[r]
@@ -231,27 +257,14 @@ def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
             if first or dk > tr_hi[b, n + p]:
                 tr_hi[b, n + p] = dk
         if k == cum_next:
+            # ∫₀^{t_k} zᵀz: the steps before point k (∫ d² is formed by the caller)
             cum_next += cum_every
-            row_ = k // cum_every
-            if k == 0:
-                cum[row_, 0] = 0.0
-                cum[row_, 1] = 0.0
-            else:
-                cum[row_, 0] = dt / 3.0 * (((sz + bz) + cz) + fz)
-                cum[row_, 1] = dt / 3.0 * (((sd + bd) + cd) + fd)
-        if k == N - 2:
-            sz_half = (sz + bz) + cz
-            sd_half = (sd + bd) + cd
-        # weights 1, 4, 2, 4, …: plain sums within blocks, Neumaier-compensated between them
-        bz += wgt * fz
-        bd += wgt * fd
-        wgt = 2.0 if wgt == 4.0 else 4.0
+            cum[k // cum_every, 0] = (sz + bz) + cz
+        bz += ek
         if k - kblock == _SUM_BLOCK - 1:
             kblock = k + 1
             sz, cz = _neumaier_add(sz, cz, bz)
-            sd, cd = _neumaier_add(sd, cd, bd)
             bz = 0.0
-            bd = 0.0
             if grew < 0:
                 # the divergence monitor (fdsc._divergence), once per block
                 xa = 0.0
@@ -261,12 +274,6 @@ def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
                 if xa > xmax:
                     grew = k
                     xgrew = xa
-        fz3 = fz2
-        fz2 = fz1
-        fz1 = fz
-        fd3 = fd2
-        fd2 = fd1
-        fd1 = fd
         if k == N - 1:
             if grew < 0:
                 xa = 0.0
@@ -313,21 +320,13 @@ def _case_loop(N, dt, nm, Phi, C, D, Mt, law, sigma0, x0,
             x[r] = xn[r]
     # steps 0 … min(last point, N − 2) in the last mode
     share_steps[prev] += min(k_done, N - 2) + 1 - share_start
-    # totals by scipy.integrate.simpson's rule for N equally spaced points
+    # the exact energy: the sum of every step's
     if diverged >= 0:
         sums[0] = np.inf
         sums[1] = np.nan
-    elif N == 2:
-        sums[0] = dt * (fz2 + fz1) / 2.0
-        sums[1] = dt * (fd2 + fd1) / 2.0
-    elif N % 2 == 1:
-        # (s + c) holds Σ w_k f_k with the last point weighted 2 (even k): correct it to 1
-        sums[0] = dt / 3.0 * (((sz + bz) + cz) - fz1)
-        sums[1] = dt / 3.0 * (((sd + bd) + cd) - fd1)
     else:
-        # Simpson over the first N − 1 points, then the last interval from the last three
-        sums[0] = dt / 3.0 * (sz_half + fz2) + dt * (5.0 * fz1 + 8.0 * fz2 - fz3) / 12.0
-        sums[1] = dt / 3.0 * (sd_half + fd2) + dt * (5.0 * fd1 + 8.0 * fd2 - fd3) / 12.0
+        sums[0] = (sz + bz) + cz
+        sums[1] = 0.0
     sums[2] = switches
     sums[3] = xgrew
     for r in range(n):

@@ -5,22 +5,26 @@ the group's sizes when it is long enough, on a pool of threads. Internal.
 
 import dataclasses
 import functools
+import math
 import warnings
 from concurrent.futures import ThreadPoolExecutor
 
 import numba
 import numpy as np
+import scipy.linalg
 
-from . import _closed_form
+from . import _closed_form, _step_energy
+from ._compensated import dot
 from ._stream_loop import _case_loop, _case_numba
-from ._stream_setup import _KIND_SINES, _stack, _tone_input
+from ._stream_setup import _KIND_FOH, _KIND_SINES, _stack, _tone_input
 from ._stream_types import StreamResult, Trace
 from .exceptions import UnstableRunWarning
 
 __all__ = []
 
 _INPUTS = ("N", "dt", "nm", "Phi", "C", "D", "Mt", "law", "sigma0", "x0", "kind",
-           "seg_start", "seg_nt", "omega", "amp", "phase", "Gr", "Gi", "Rre", "Rim", "xmax")
+           "seg_start", "seg_nt", "omega", "amp", "phase", "Gr", "Gi", "Rre", "Rim", "xmax",
+           "Qe", "Rx", "split")
 
 
 def _run(preps, kernel, threads, closed_form=True, specialize=None):
@@ -90,45 +94,35 @@ def _closed_form_applies(pr):
 
 
 def _closed_result(pr):
-    """The result of an LTI run under pieces of tones from the closed form of its Simpson sums
-    (:mod:`fdsc._closed_form`): the same numbers as the loop's, rounded differently; None if
+    """The result of an LTI run under pieces of tones from the closed form of its step energies'
+    sums (:mod:`fdsc._closed_form`): the same numbers as the loop's, rounded differently; None if
     the closed form's terms cancel too much to keep its accuracy."""
     N, dt, ce = pr["N"], pr["dt"], pr["cum_every"]
-    A, B = pr["A"][0], pr["B"]
+    A, B, Phi, x0 = pr["A"][0], pr["B"], pr["Phi"][0], pr["x0"]
+    # a stiff mode's step forms are in the coordinates η = S⁻¹ x that separate its fast and slow
+    # parts (fdsc._step_energy): the closed form runs in those coordinates
+    Ae, Be, _, _, S, Si = _step_energy.mode_coordinates(pr["modes"][:1])[0]
+    if S is not None:
+        A, B = Ae, Be[:, 0]
+        Phi, x0 = scipy.linalg.expm(A * dt), dot(Si, x0[:, None])[:, 0]
     parts = pr["segments"]
     H = [None if part is None else _tone_input(A, B, part, dt) for part in parts]
     grid = np.arange(0, N, ce, dtype=np.int64) if ce else np.zeros(0, dtype=np.int64)
-    if N == 2:
-        ends, points = [], [0, 1]
-    elif N % 2 == 1:
-        ends, points = [N], [0, N - 1]
-    else:
-        ends, points = [N - 2], [0, N - 3, N - 2, N - 1]
-    ends_all = np.concatenate([np.array(ends, dtype=np.int64), grid])
-    points_all = np.concatenate([np.array(points, dtype=np.int64), grid])
-    G, f, x_last, mag = _closed_form.simpson_sums(pr["Phi"][0], pr["C"][0], pr["D"], pr["x0"],
-                                                  pr["seg_start"], parts, H, dt, ends_all, points_all)
-    if not np.all(mag <= _closed_form.MAX_CANCELLATION * np.abs(G[0, 0])):
+    ends = np.concatenate([[N - 1], grid]).astype(np.int64)
+    G, x_last, mag = _closed_form.step_sums(Phi, [f[0][0] for f in pr["forms"]], x0,
+                                            pr["seg_start"], parts, H, dt, ends)
+    if S is not None:
+        x_last = dot(S, x_last[:, None])[:, 0]
+    if not np.all(mag <= _closed_form.MAX_CANCELLATION * np.abs(G[0])):
         return None     # its terms cancel: digits would be lost, run the loop
-    # Simpson's weighted sum Σ_{k<K} w_k f_k (w = 1, 4, 2, 4, …) = 3 G₊ − G₋ − f₀
-    W = 3.0 * G[:, 0, :] - G[:, 1, :] - f[:, :1]
-    if N == 2:
-        total = dt * (f[:, 0] + f[:, 1]) / 2.0
-    elif N % 2 == 1:
-        total = dt / 3.0 * (W[:, 0] - f[:, 1])
-    else:
-        total = dt / 3.0 * (W[:, 0] + f[:, 2]) + dt * (5.0 * f[:, 3] + 8.0 * f[:, 2] - f[:, 1]) / 12.0
-    t_cum = grid * dt
-    cum = np.zeros((2, grid.size))
-    if grid.size:
-        cum[:, 1:] = dt / 3.0 * (W[:, len(ends) + 1:] + f[:, len(points) + 1:])
+    d_all = _input_energies(pr, ends)
     edges = pr["dwell_edges"].astype(float) * dt
     return StreamResult(
-        horizon=pr["horizon"], dt=dt, energy=float(total[0]), input_energy=float(total[1]),
+        horizon=pr["horizon"], dt=dt, energy=float(G[0]), input_energy=float(d_all[0]),
         switches=0, time_share=np.ones(1), dwell_edges=edges,
         dwell_counts=np.zeros(edges.size - 1, dtype=np.int64),
-        x_final=x_last, sigma_final=0, t_cum=t_cum, energy_cum=cum[0], input_energy_cum=cum[1],
-        trace=None, diverged_at=None)
+        x_final=x_last, sigma_final=0, t_cum=grid * dt, energy_cum=G[1:].copy(),
+        input_energy_cum=d_all[1:].copy(), trace=None, diverged_at=None)
 
 
 #: Largest size for which the compiled loop is specialized (see :func:`_shape_tag`): states,
@@ -234,13 +228,15 @@ def _result(pr, c, st, sums, share_steps, dwell_counts, cum, tr_lo, tr_hi, tr_sh
     ce, te = pr["cum_every"], pr["trace_every"]
     cs = slice(st["cum_off"][c], st["cum_off"][c + 1])
     t_cum = np.arange(cs.stop - cs.start) * ce * dt
-    e_cum, d_cum = cum[cs, 0].copy(), cum[cs, 1].copy()
+    e_cum = cum[cs, 0].copy()
+    d_all = _input_energies(pr, np.r_[N - 1, np.arange(cs.stop - cs.start) * ce])
+    d_cum = d_all[1:]
     trace = None
     if te:
         ts = slice(st["tr_off"][c], st["tr_off"][c + 1])
         lo, hi, sh = tr_lo[ts].copy(), tr_hi[ts].copy(), tr_share[ts, :nm].copy()
         start = np.arange(lo.shape[0]) * te
-        last = N - 1 if diverged < 0 else diverged      # the last point written
+        last = N - 1 if diverged < 0 else diverged - 1  # the last point written
         counts = np.clip(last + 1 - start, 1, te).astype(float)
         # bins after the point where the state overflowed were never written: not a value
         lo[start > last], hi[start > last], sh[start > last] = np.nan, np.nan, np.nan
@@ -255,13 +251,23 @@ def _result(pr, c, st, sums, share_steps, dwell_counts, cum, tr_lo, tr_hi, tr_sh
         t_cum, e_cum, d_cum = t_cum[keep], e_cum[keep], d_cum[keep]
     edges = st["dwell_edges"][c, :pr["dwell_edges"].size].astype(float) * dt
     return StreamResult(
-        horizon=pr["horizon"], dt=dt, energy=float(sums[c, 0]), input_energy=float(sums[c, 1]),
-        switches=int(sums[c, 2]), time_share=share_steps[c, :nm] / (N - 1),
+        horizon=pr["horizon"], dt=dt, energy=float(sums[c, 0]),
+        input_energy=float(d_all[0]) if diverged < 0 else math.nan, switches=int(sums[c, 2]),
+        time_share=share_steps[c, :nm] / (N - 1),
         dwell_edges=edges, dwell_counts=dwell_counts[c, :edges.size - 1].copy(),
         x_final=x_out[c, :n].copy(), sigma_final=int(info[c, 1]), t_cum=t_cum, energy_cum=e_cum,
         input_energy_cum=d_cum, trace=trace, diverged_at=None if diverged < 0 else diverged * dt,
         grew_at=None if info[c, 2] < 0 else int(info[c, 2]) * dt,
         growth=None if info[c, 2] < 0 else float(sums[c, 3]) / pr["x_bound"])   # both at scale
+
+
+def _input_energies(pr, ends):
+    """``∫₀^{t_K} d²`` of a prepared case at the points ``ends``, exactly (in closed form for
+    tones, per held step for samples: :mod:`fdsc._step_energy`)."""
+    if pr["kind"] == _KIND_SINES:
+        return _step_energy.sines_input_energy(pr["segments"], pr["seg_start"], pr["dt"], ends)
+    return _step_energy.held_input_energy(pr["u"], pr["dt"], "foh" if pr["kind"] == _KIND_FOH else "zoh",
+                                          ends)
 
 
 def _warn_unstable_modes(pr, res, where, stacklevel):

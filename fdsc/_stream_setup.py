@@ -9,7 +9,7 @@ import warnings
 import numpy as np
 from scipy.linalg import expm
 
-from . import _divergence
+from . import _divergence, _step_energy
 from ._defaults import DEFAULT_MAX_MEMORY
 from ._modes import LAWS, _as_modes, _law_weights, _shared_input
 from ._simulate_kernel import PHASOR_BLOCK, break_index, check_resolved, rotations
@@ -29,15 +29,12 @@ MAX_STEPS = 2**62
 _LAW_CODE = {"previous": 0, "candidate": 1}
 
 
-def _steps_of(name, seconds, dt, where, *, even=False):
-    """A duration in s as a whole number of steps of ``dt`` (≥ 1, even if asked)."""
+def _steps_of(name, seconds, dt, where):
+    """A duration in s as a whole number of steps of ``dt`` (≥ 1)."""
     seconds = as_positive(name, seconds)
     k = round(seconds / dt)
     if k < 1 or abs(k * dt - seconds) > 1e-9 * seconds:
         raise ValueError(f"{where}{name} ({seconds!r} s) must be a multiple of dt ({dt!r} s)")
-    if even and k % 2:
-        raise ValueError(f"{where}{name} ({seconds:g} s) must be an even number of steps of dt = "
-                         f"{dt:g} s (the running integrals use Simpson's rule); found {k} steps")
     return k
 
 
@@ -143,7 +140,7 @@ def _prepare(case, where, cumulative_every, trace_every, dwell_edges, max_memory
                          "(the step index is a 64-bit integer); enlarge dt or shorten the horizon")
     N = steps + 1
     cum_steps = 0 if cumulative_every is None else _steps_of(
-        "cumulative_every", cumulative_every, dt, where, even=True)
+        "cumulative_every", cumulative_every, dt, where)
     if cum_steps > steps:
         raise ValueError(f"{where}cumulative_every ({cumulative_every:g} s) exceeds the horizon "
                          f"({horizon:g} s): the coarse grid would hold one point")
@@ -178,7 +175,8 @@ def _prepare(case, where, cumulative_every, trace_every, dwell_edges, max_memory
             raise ValueError(f"{where}d has {d.values.size} samples but the horizon needs {N}")
         G0, G1 = _hold_matrices(A, B, dt)
         out.update(kind=_KIND_ZOH if d.hold == "zoh" else _KIND_FOH, u=d.values[:N],
-                   G0=G0, G1=G1, seg_start=np.array([0, N]), segments=[None])
+                   G0=G0, G1=G1, seg_start=np.array([0, N]), segments=[None],
+                   forms=[_step_energy.held_forms(_step_energy.mode_coordinates(modes), dt, d.hold)])
     else:
         check_resolved(d, dt, where)
         seg_start, parts = _segments(d, N, dt, where)
@@ -189,6 +187,11 @@ def _prepare(case, where, cumulative_every, trace_every, dwell_edges, max_memory
                 for i, a in enumerate(A):
                     check_no_pole_at(a, part.frequencies,
                                      what=f"{where}the forced response of mode {i} to the disturbance")
+        # the exact energy of a step, per piece and mode (unit amplitudes: the loop scales the
+        # oscillators by the piece's amplitudes)
+        coords = _step_energy.mode_coordinates(modes)
+        out["forms"] = [_step_energy.sine_forms(coords, np.zeros(0) if part is None else part.frequencies, dt)
+                        for part in parts]
     out["cum_every"], out["trace_every"] = cum_steps, trace_steps
     if dwell_edges is None:
         edges = 2 ** np.arange(0, max(2, math.ceil(math.log2(N)) + 2), dtype=np.int64)
@@ -346,7 +349,9 @@ def _stack(preps):
               trace_every=np.array([q["trace_every"] for q in preps], dtype=np.int64),
               dwell_edges=np.full((C, nb), np.iinfo(np.int64).max, dtype=np.int64),
               rparams=np.zeros((C, 4)),
-              xmax=np.array([_divergence.SAFETY * q["x_bound"] for q in preps]))
+              xmax=np.array([_divergence.SAFETY * q["x_bound"] for q in preps]),
+              Qe=np.zeros((C, S, nm, n + 2 * T, n + 2 * T)),
+              Rx=np.tile(np.eye(n), (C, nm, 1, 1)), split=np.zeros((C, nm), dtype=np.bool_))
     u_off, cum_off, tr_off = [0], [0], [0]
     for c, q in enumerate(preps):
         qn, qm, qp = q["n"], q["nm"], q["p"]
@@ -380,6 +385,16 @@ def _stack(preps):
             R = R.transpose(0, 2, 1)
             st["Rre"][c, :s_], st["Rim"][c, :s_] = R.real, R.imag
         st["dwell_edges"][c, :q["dwell_edges"].size] = q["dwell_edges"]
+        # the step energy's forms, placed in the padded η = [R x; a∘c; a∘s] (or [R x; u; Δu])
+        for s_, (Qf, Rf, sp) in enumerate(q["forms"]):
+            k_ = (Qf.shape[1] - qn) // 2
+            if q["kind"] == _KIND_SINES:
+                idx = np.r_[np.arange(qn), n + np.arange(k_), n + T + np.arange(k_)]
+            else:
+                idx = np.r_[np.arange(qn), n, n + 1]
+            st["Qe"][c, s_, :qm][:, idx[:, None], idx[None, :]] = Qf
+            st["Rx"][c, :qm, :qn, :qn] = Rf
+            st["split"][c, :qm] = sp
         u_off.append(u_off[-1] + q["u"].size)
         ce, te = q["cum_every"], q["trace_every"]
         cum_off.append(cum_off[-1] + ((q["N"] - 1) // ce + 1 if ce else 0))

@@ -107,11 +107,11 @@ class StreamResult:
     horizon, dt : float
         The grid ``0, dt, …, horizon`` (s).
     energy, input_energy : float
-        ``∫ zᵀz`` and ``∫ d²`` over the horizon by Simpson's rule on the samples, as
-        :meth:`SimResult.energy <fdsc.simulate.SimResult.energy>`; ``inf`` and ``nan`` if the run
-        diverged. Under a :class:`~fdsc.signals.Sampled` input this is a quadrature of the
-        samples, not the exact integral of the held signal (which jumps, for ZOH, at every
-        sample): for a sampled smooth signal the two differ by O(dt).
+        ``∫ zᵀz`` and ``∫ d²`` over the horizon, exact: the sum of every step's energy, a
+        quadratic form of the state and the disturbance's oscillators (or held samples) at the
+        step's start (:mod:`fdsc._step_energy`), as :meth:`SimResult.energy
+        <fdsc.simulate.SimResult.energy>`; ``inf`` and ``nan`` if the run diverged. The output
+        of a switched run jumps at every switch, so no quadrature of its samples would do.
     switches : int
         Number of changes of the active mode.
     time_share : (I,) ndarray

@@ -28,8 +28,8 @@ class SupervisedRun:
     horizon : float
         Run length (s).
     dt : float or None
-        The step of a run by :func:`fdsc.simulate_stream` (energies by Simpson's rule on each
-        piece between switches), or None for an exact run (energies integrated exactly).
+        The step of a run by :func:`fdsc.simulate_stream` (piece by piece between switches),
+        or None for a run by the exact engine; the energies are exact either way.
     energy, input_energy : float
         ``∫ zᵀz`` and ``∫ d²`` over the horizon.
     switch_times : (m,) ndarray

@@ -142,6 +142,11 @@ def instantaneous_power(x: ArrayLike, xdot: ArrayLike, band: Band, Q: ArrayLike)
 def fdeef(t: ArrayLike, x: ArrayLike, xdot: ArrayLike, band: Band, Q: ArrayLike) -> float:
     """FD-EEF ``S(Ω, Q, T_l)`` over the sampled window ``[t[0], t[-1]]`` (Simpson's rule).
 
+    A quadrature of the given samples: accurate for a smooth trajectory (an LTI run under a
+    smooth disturbance; Simpson's error falls like the step to the fourth). The ẋ of a switched
+    run jumps at every switch, where a quadrature of samples is wrong by up to a step's worth
+    of the integrand; do not use it on such samples.
+
     Parameters
     ----------
     t : (N,) array_like

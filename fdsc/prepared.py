@@ -13,7 +13,7 @@ import warnings
 import numpy as np
 
 from . import _divergence
-from ._grid_run import STIFF_STEP, shift_signal
+from ._grid_run import shift_signal
 from ._validation import as_nonnegative, as_positive, as_vector, check_type
 from .decisions import (
     SupervisedRun,
@@ -34,7 +34,7 @@ from .decisions import (
 from .exceptions import DimensionError, EnergyOverflowError, UnstableRunWarning
 from .signals import Piecewise, Sinusoids
 
-__all__ = ["Prepared", "shift_signal", "STIFF_STEP"]
+__all__ = ["Prepared", "shift_signal"]
 
 class Prepared:
     """A :class:`Supervisor` prepared for one disturbance (see :meth:`Supervisor.prepare`).

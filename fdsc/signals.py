@@ -365,7 +365,8 @@ class Sampled:
     The state of a simulation under the held signal is exact to rounding; what differs from an
     underlying continuous signal s(t) is the hold itself: at most ``dt · max|ṡ|`` for the
     zero-order hold and ``dt² / 8 · max|s̈|`` for the first-order hold. Energies (``∫ zᵀz``,
-    ``∫ d²``) are Simpson's rule on the samples, not exact integrals of the held signal.
+    ``∫ d²``) are the exact integrals of the run under the held signal (each step's a quadratic
+    form of the state and the held samples).
 
     Examples
     --------

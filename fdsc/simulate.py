@@ -31,6 +31,7 @@ from ._modes import LAWS, _as_modes, _law_weights, _shared_input
 from ._simulate_kernel import PHASOR_BLOCK, _samples, _segments, check_resolved, tone_tables
 from ._simulate_kernel import kernel as _compiled_kernel
 from ._simulate_reference import _kernel_numpy, _particular_many, _particular_steps
+from ._step_energy import mode_coordinates, trajectory_step_energies
 from ._validation import as_choice, as_count, as_matrix, as_positive, as_vector, check_type
 from .exceptions import EnergyOverflowError, MemoryLimitError, UnstableError, UnstableRunWarning
 from .plant import LTISystem
@@ -62,6 +63,11 @@ class SimResult:
         Disturbance samples.
     sigma : (N,) int ndarray
         Active mode index (0-based) on ``[t_k, t_{k+1})``.
+    step_energy, step_input_energy : (N − 1,) ndarray
+        ``∫ zᵀz`` and ``∫ d²`` over each step ``[t_k, t_{k+1})``, exact (a quadratic form of the
+        state and the tones' oscillators at ``t_k`` per step; :mod:`fdsc._step_energy`). The
+        output of a switched run jumps at every switch, so no quadrature of the samples ``z``
+        gives its energy: these do. None only for a result made by hand.
     """
 
     t: np.ndarray
@@ -70,6 +76,8 @@ class SimResult:
     z: np.ndarray
     d: np.ndarray
     sigma: np.ndarray
+    step_energy: np.ndarray | None = None
+    step_input_energy: np.ndarray | None = None
 
     @property
     def switch_times(self) -> np.ndarray:
@@ -77,7 +85,7 @@ class SimResult:
         return self.t[1:][np.diff(self.sigma) != 0]
 
     def energy(self) -> float:
-        """∫ zᵀz dt over the run (composite Simpson's rule on the grid).
+        """∫ zᵀz dt over the run, exact (the sum of :attr:`step_energy`).
 
         Returns
         -------
@@ -86,18 +94,20 @@ class SimResult:
         Raises
         ------
         EnergyOverflowError
-            If the energy exceeds the float range (the samples themselves are finite: they are
-            squared at a scale of a power of two and the sum scaled back, so a finite energy is
-            never lost to an overflow on the way).
+            If the energy exceeds the float range (the samples themselves are finite: every
+            step's energy is formed at a scale of a power of two and scaled back, so a finite
+            energy is never lost to an overflow on the way).
+        ValueError
+            If the result carries no step energies (made by hand, not by :func:`simulate`).
 
         Notes
         -----
         The numerator of the energy ratios of paper eqs. (14), (15) and (35).
         """
-        return _scaled_simpson(self.z.reshape(self.t.size, -1), self.t, "energy: ∫zᵀz")
+        return _total(self.step_energy, self.z, "energy: ∫zᵀz")
 
     def input_energy(self) -> float:
-        """∫ d² dt over the run (composite Simpson's rule on the grid).
+        """∫ d² dt over the run, exact (the sum of :attr:`step_input_energy`).
 
         Returns
         -------
@@ -105,10 +115,28 @@ class SimResult:
 
         Raises
         ------
-        EnergyOverflowError
-            If the energy exceeds the float range (as :meth:`energy`).
+        EnergyOverflowError, ValueError
+            As :meth:`energy`.
         """
-        return _scaled_simpson(self.d.reshape(self.t.size, -1), self.t, "input_energy: ∫d²")
+        return _total(self.step_input_energy, self.d, "input_energy: ∫d²")
+
+    def cumulative_energy(self) -> tuple[np.ndarray, np.ndarray]:
+        """``∫₀^{t_k} zᵀz`` and ``∫₀^{t_k} d²`` at every grid point, exact.
+
+        Returns
+        -------
+        ez, ed : (N,) ndarray
+            Running integrals (0 at the first point).
+
+        Raises
+        ------
+        ValueError
+            If the result carries no step energies (made by hand).
+        """
+        if self.step_energy is None or self.step_input_energy is None:
+            raise ValueError("this SimResult carries no step energies (it was not made by simulate)")
+        return (np.concatenate([[0.0], np.cumsum(self.step_energy)]),
+                np.concatenate([[0.0], np.cumsum(self.step_input_energy)]))
 
     def time_share(self) -> np.ndarray:
         """Fraction of the horizon spent in each mode (β_i of Theorem 1(3), paper eq. (36)).
@@ -124,15 +152,15 @@ class SimResult:
             self.t[-1] - self.t[0])
 
 
-def _scaled_simpson(v, t, what):
-    """Simpson's rule of the row sums of ``v²`` over ``t``, squared at the scale 2^−e that keeps
-    the largest sample below 2^400 and scaled back by 2^2e (exact)."""
-    from scipy.integrate import simpson
-
-    big = float(np.abs(v).max()) if v.size else 0.0
-    e = max(0, math.frexp(big)[1] - 400) if np.isfinite(big) else 0
-    with np.errstate(over="ignore"):
-        total = float(np.ldexp(float(simpson(np.sum(np.ldexp(v, -e) ** 2, axis=1), x=t)), 2 * e))
+def _total(steps, samples, what):
+    """The compensated sum of the step energies ``steps``; an overflow of a run whose samples are
+    finite raised by name."""
+    if steps is None:
+        raise ValueError(f"{what.split(':')[0]}: this SimResult carries no step energies (it was "
+                         "not made by simulate), and its energy is not a quadrature of samples")
+    with np.errstate(over="ignore", invalid="ignore"):
+        total = math.fsum(steps) if np.all(np.isfinite(steps)) else math.inf
+    big = float(np.abs(samples).max()) if samples.size else 0.0
     if np.isfinite(big) and not math.isfinite(total):
         raise EnergyOverflowError(f"{what} over the run exceeds the float range (about 1.8e308) "
                                   f"although every sample is finite (largest {big:.3g})")
@@ -221,8 +249,9 @@ def estimate_memory(n_steps: int, n_states: int, n_outputs: int, n_modes: int, n
                     kernel: str = "numba") -> int:
     """Bytes :func:`simulate` needs for a run of ``n_steps`` samples (peak working memory).
 
-    The compiled kernel needs the returned trajectories (x, ẋ, z, d, σ, t) and, per piece of the
-    disturbance, its tone tables: rotations for ``min(PHASOR_BLOCK, longest_piece + 1)`` steps
+    The compiled kernel needs the returned trajectories (x, ẋ, z, d, σ, t, and the two energies
+    of every step) and, per piece of the disturbance, its tone tables: rotations for
+    ``min(PHASOR_BLOCK, longest_piece + 1)`` steps
     (:data:`fdsc._simulate_kernel.PHASOR_BLOCK`) and each mode's particular-solution
     coefficients. The NumPy reference also holds the particular solutions at both ends of every
     step for every mode and the per-tone temporaries of their evaluation.
@@ -258,7 +287,7 @@ def estimate_memory(n_steps: int, n_states: int, n_outputs: int, n_modes: int, n
     True
     """
     as_choice("kernel", kernel, KERNELS)
-    per_step = 2 * n_states + n_outputs + 3           # x, ẋ, z, d, σ, t
+    per_step = 2 * n_states + n_outputs + 5           # x, ẋ, z, d, σ, t, two step energies
     if kernel == "numba":
         rows = min(PHASOR_BLOCK, (n_steps - 1 if longest_piece is None else longest_piece) + 1)
         tables = n_pieces * (n_tones * (2 * rows + 2 * n_modes * n_states + 3) + 2)
@@ -503,4 +532,9 @@ def simulate(modes: LTISystem | list, d: Sinusoids | Piecewise, t: ArrayLike, *,
             sel = sigma == i
             xdot[sel] = x[sel] @ m.A.T + np.outer(dvals[sel], B[:, 0])
             z[sel] = x[sel] @ m.C.T + np.outer(dvals[sel], D[:, 0])
-    return SimResult(t, x, xdot, z, dvals, sigma)
+    # every step's energy, exact; formed at a power-of-two scale that keeps squares in range
+    big = max([float(np.abs(x).max())] + [float(np.abs(p.amplitudes).max())
+                                          for _, _, p in pieces if p is not None and p.amplitudes.size])
+    scale = max(0, math.frexp(big)[1] - 400) if np.isfinite(big) else 0
+    ez, ed = trajectory_step_energies(x, sigma, t, pieces, mode_coordinates(modes), dt, scale)
+    return SimResult(t, x, xdot, z, dvals, sigma, ez, ed)

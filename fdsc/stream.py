@@ -32,10 +32,16 @@ A :class:`~fdsc.signals.Sampled` input is integrated
 exactly for its hold: ``x_{k+1} = Φ x_k + Γ₀ u_k`` (zero-order) or ``+ Γ₁ (u_{k+1} − u_k)``
 (first-order), with ``Φ, Γ₀, Γ₁`` from one matrix exponential (Van Loan's block form).
 
-**Reductions** (all in the loop): ``∫ zᵀz`` and ``∫ d²`` over the run by the composite
-Simpson rule that :func:`scipy.integrate.simpson` applies to the same samples (Neumaier-
-compensated sums, so 1e9 steps lose no digits); the same two integrals at every point of a
-coarse grid (for the running L2-induced ratio and window energies); the switch count; the
+**Reductions**: ``∫ zᵀz`` over the run, exact: within a step the mode (or the held input) and
+the disturbance's tones are fixed, so the step's energy is the quadratic form ``ηᵀ Q η`` of
+``η = [x_k; a∘cos(ω t_k + φ); a∘sin(ω t_k + φ)]`` (or ``[x_k; u_k; u_{k+1} − u_k]`` for a held
+input), with one Q per mode and piece computed before the loop (:mod:`fdsc._step_energy`;
+``(n + 2T)²`` multiplications a step). A switched run's output jumps at every switch, where a
+quadrature of the samples (Simpson's rule, as before) was wrong by up to a step's energy: 9 %
+of the whole on the paper's FDSC under its LF disturbance. The sums are Neumaier-compensated
+(1e9 steps lose no digits); ``∫ d²`` is formed outside the loop in closed form. The same two
+integrals at every point of a coarse grid (for the running L2-induced ratio and window
+energies); the switch count; the
 histogram of dwell times; the number of steps spent in each mode; and, only if asked for,
 traces decimated to min/max per bin (plus the share of each mode per bin), which represent a
 fast oscillation faithfully at any plot resolution. A run that keeps no traces needs memory
@@ -43,7 +49,7 @@ independent of its length.
 
 **LTI runs in closed form.** A run of one mode under a Sinusoids or Piecewise disturbance, with
 no traces, has samples in closed form (a transient plus a steady state per piece), and so have
-its Simpson sums: :mod:`fdsc._closed_form` computes them, the coarse grid included, in a time
+the sums of its step energies: :mod:`fdsc._closed_form` computes them, the coarse grid included, in a time
 independent of the horizon, wherever that keeps the loop's accuracy (else the loop runs; see
 :func:`simulate_stream`, Notes).
 
@@ -143,8 +149,8 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
         Instead of ``law_bands`` and ``law_Q``: one symmetric W_i per mode on ``[ẋ; x]`` (2n) or
         ``[ẍ; ẋ; x]`` (3n); see :func:`fdsc.simulate.simulate`.
     cumulative_every : float, optional
-        Step (s) of the coarse grid on which ``∫₀ᵗ zᵀz`` and ``∫₀ᵗ d²`` are kept: an even
-        number of steps of dt. Needed by :meth:`StreamResult.running_l2` and
+        Step (s) of the coarse grid on which ``∫₀ᵗ zᵀz`` and ``∫₀ᵗ d²`` are kept (exact): a
+        whole number of steps of dt. Needed by :meth:`StreamResult.running_l2` and
         :meth:`StreamResult.window_energies`.
     trace_every : float, optional
         Bin width (s, a multiple of dt) of decimated min/max traces of x, z and d and of the
@@ -213,14 +219,14 @@ def simulate_stream(modes, d: Sinusoids | Piecewise | Sampled, horizon: float, d
     Notes
     -----
     The samples of an LTI run under tones are a transient plus a steady state in closed form,
-    so the same Simpson sums (total and coarse grid) and the state at the end are computed
-    without the loop, in a time independent of the horizon (:mod:`fdsc._closed_form`). It is
+    so the same sums of step energies (total and coarse grid) and the state at the end are
+    computed without the loop, in a time independent of the horizon (:mod:`fdsc._closed_form`). It is
     used only where it keeps the loop's accuracy: the step Φ = e^{AΔt} has spectral radius
     ≤ 1 − 1e-6, and the closed form's terms are at most 30 times its sums (not so for a large
     steady state against the transient of a slow pole over a short run, or for a stiff loop in
     badly scaled coordinates); otherwise, and for ``closed_form=False``, the run goes through
-    the loop. Where it is kept it agrees with the loop to a few 1e-11 relative or better
-    (random loops with poles from 1e-3 to 5e5 rad/s; the paper's loops: about 1e-13).
+    the loop. Where it is kept it agrees with the loop to a few 1e-10 relative or better
+    (random loops with poles from 1e-3 to 5e5 rad/s; the paper's loops: about 1e-12).
 
     Examples
     --------

@@ -401,8 +401,9 @@ def supervise(plant, gains, d, horizon: float, dt: float | None = None, *, law: 
     dt : float, optional
         None (default): the switched run is integrated exactly (:mod:`fdsc._blocks`). Given:
         it is run by :func:`fdsc.simulate_stream` at this step, piece by piece between switches
-        (energies by Simpson's rule on the grid, like every fixed-gain run of the simulator);
-        ``decide_every`` must be a multiple of ``dt``. The decisions are the same either way.
+        (each step's energy exact, as in every run of the simulator: the two agree to
+        rounding); ``decide_every`` must be a multiple of ``dt``. The decisions are the same
+        either way.
     forgetting, hysteresis, warmup, min_dwell, sigma0
         See :meth:`Prepared.run`.
     x0 : (n,) array_like, optional

@@ -20,12 +20,13 @@ DT = 2e-3
 
 @pytest.fixture(scope="module")
 def study():
-    mixed, pw = mixed_sweep(5, dt=DT), piecewise_sweep(3, dt=DT)
+    # ρ_p on a step of 0.0625: 0.1875 ≤ 0.2 lies beyond the crossover (about 0.13)
+    mixed, pw = mixed_sweep(9, dt=DT), piecewise_sweep(3, dt=DT)
     ext = extended_piecewise((0.5, 2.0), dt=DT)
     cross = {r: crossover(mixed, r, tol=0.05) for r in ("PassC-LF", "PassC-EF")}
     ext_cross = {r: crossover(ext, r, tol=0.1) for r in ("PassC-LF", "PassC-EF")}
     p1, p2 = p1_global(mixed), p2_localized(pw)
-    half = mixed_sweep(5, dt=DT / 2)
+    half = mixed_sweep(9, dt=DT / 2)
     cross_half = {r: crossover(half, r, tol=0.05) for r in ("PassC-LF", "PassC-EF")}
     return SweepStudy(mixed, pw, cross, ext, ext_cross, p1, p2, half, pw, cross_half, p1_global(half), p2)
 

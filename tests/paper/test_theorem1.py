@@ -17,6 +17,7 @@ from fdsc.paper.reproduced.theorem1 import (
     theorem1_table,
     window_ratios,
 )
+from fdsc import LTISystem, Sinusoids, simulate, time_grid
 from fdsc.paper.shared.data import our_q
 from fdsc.paper.shared.results import RecordPart
 from fdsc.paper.shared.verdict import VERDICTS
@@ -105,13 +106,17 @@ def test_statement1_check_and_its_consistency_rule():
 
 
 def test_window_ratios_of_a_known_run():
-    # z = 2 d in one output: every window ratio is exactly 4
+    # z = 2 d: every window's ratio is exactly 4, read from the run's exact running energies
     t = np.linspace(0.0, 10.0, 1001)
-    d = np.sin(3.0 * t)
-    run = SimpleNamespace(t=t, d=d, z=np.column_stack([2 * d, np.zeros_like(d)]))
+    ed = t / 2 - np.sin(6.0 * t) / 12                # ∫₀ᵗ sin²(3s) ds
+    run = SimpleNamespace(t=t, cumulative_energy=lambda: (4.0 * ed, ed))
     r = window_ratios(run, 2.0)
     assert r.shape == (5,)
     assert_allclose(r, 4.0, rtol=1e-12)
+    # a real run of z = 2 d (a static loop with a fast pole: z = 2 x, ẋ = −1e3 x + 1e3 d)
+    loop = LTISystem([[-1e3]], [[1e3]], [[2.0]], [[0.0]])
+    sim = simulate(loop, Sinusoids([1.0], [3.0]), time_grid(10.0, 1e-3))
+    assert_allclose(window_ratios(sim, 2.0)[1:], 4.0, rtol=2e-3)      # |1 / (1 + 3e-3 j)|² and the lag
 
 
 @pytest.mark.parametrize("window", [0.01, 20.0])

@@ -148,8 +148,9 @@ def gap_closing() -> GapClosing:
 class ResidueRun:
     """The terms of the proof of statements (2) and (3) measured on one FDSC run from rest.
 
-    All energies are left Riemann sums on the samples (sample k carries mode σ_k on
-    ``[t_k, t_{k+1})``) and are divided by ``E_d = ∫ dᵀd``.
+    The energies ``∫zᵀz`` and ``∫dᵀd`` are exact per step (sample k carries mode σ_k on
+    ``[t_k, t_{k+1})``); the law's term is a left Riemann sum of its samples; all are divided by
+    ``E_d = ∫ dᵀd``.
 
     Parameters
     ----------
@@ -268,9 +269,9 @@ def _residue_run(q_label, kind, horizon, dt, window):
                    law_bands=pm["bands"], law_Q=cert.Q)
     P = np.array(cert.P)
     g2 = np.asarray(cert.gammas) ** 2
-    s, x, d = sim.sigma[:-1], sim.x, sim.d[:-1]
-    ed = d**2 * dt
-    ez = np.sum(sim.z[:-1] ** 2, axis=1) * dt
+    s, x = sim.sigma[:-1], sim.x
+    # each step's energies exactly (its output jumps at the switches: no quadrature of samples)
+    ed, ez = sim.step_input_energy, sim.step_energy
     v_start = np.einsum("ki,kij,kj->k", x[:-1], P[s], x[:-1])
     v_end = np.einsum("ki,kij,kj->k", x[1:], P[s], x[1:])
     jump = np.concatenate([[0.0], v_start[1:] - v_end[:-1]])
