@@ -1,6 +1,8 @@
 # Two commands from a fresh clone (GNU make and Python 3.11 are all that is needed):
-#   make book   builds the book into book/_build/html (executing every chapter)
-#   make test   runs the README's test command
+#   make book   builds the book into book/_build/html (executing every chapter not yet executed
+#               for the same sources)
+#   make test   runs the README's test command (taking the chapters the build executed from its
+#               notebook cache; the results of both in one folder)
 # Each creates .venv if it is missing and installs requirements.txt, every package at the version
 # of the lock constraints.txt, whenever either changed since the last install (the stamp
 # .venv/.requirements-installed). Also: make reproduce, make clean, and
@@ -10,6 +12,11 @@ PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.requirements-installed
+# One folder of chapter results for the book build, the tests and the record (keyed by a hash
+# of the sources: results of other code are never read), so that `make book` then `make test`, or
+# the reverse, computes each result once; the tests also take each chapter's execution from the
+# notebook cache the build filled, and the build the tests'. `make clean` removes it.
+RESULTS := $(CURDIR)/book/_build/.fdsc-results
 
 .PHONY: book test reproduce clean lock
 
@@ -23,14 +30,14 @@ $(STAMP): requirements.txt constraints.txt pyproject.toml | $(BIN)/python
 	touch $(STAMP)
 
 test: $(STAMP)
-	$(BIN)/python -m pytest
+	FDSC_CACHE_DIR=$(RESULTS) $(BIN)/python -m pytest
 
 book: $(STAMP)
-	$(BIN)/jupyter-book build book -W --keep-going
+	FDSC_CACHE_DIR=$(RESULTS) $(BIN)/jupyter-book build book -W --keep-going
 	@echo "The book is in book/_build/html: open book/_build/html/index.html in a browser."
 
 reproduce: $(STAMP)
-	$(BIN)/python -m fdsc reproduce --out out
+	FDSC_CACHE_DIR=$(RESULTS) $(BIN)/python -m fdsc reproduce --out out
 	@echo "The reproduction record is out/reproduction.json."
 
 clean:

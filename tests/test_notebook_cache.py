@@ -144,6 +144,32 @@ def test_a_notebook_executed_by_nbmake_is_found_for_the_same_code_only(root):
     assert not old.exists() and match(root, page)[1].cells[1].outputs[0]["text"] == "1\n"
 
 
+def test_a_notebook_cached_for_the_same_sources_is_not_executed_again(root):
+    # make book, then make test: the test run takes the build's execution instead of computing
+    # the chapter again; another code cell, or other sources, executes it
+    page = write_notebook(root / "book" / "page.ipynb", "print(1)")
+    calls = []
+
+    def counting(run):
+        calls.append(run.filename)
+        return fake_execute(page, lambda: None)(run)
+
+    first = nc.caching_execute(counting, root=root)(fake_run(page))
+    again = nc.caching_execute(counting, root=root)(fake_run(page))
+    assert len(calls) == 1 and again.error is None
+    assert again.nb.cells[1].outputs[0]["text"] == first.nb.cells[1].outputs[0]["text"] == "1\n"
+    # an import check or another kernel always executes
+    nc.caching_execute(counting, root=root)(fake_run(page, find_import_errors=True))
+    assert len(calls) == 2
+    write_notebook(page, "print(2)")
+    nc.caching_execute(counting, root=root)(fake_run(page))
+    assert len(calls) == 3
+    with (root / "fdsc" / "bands.py").open("a") as fh:
+        fh.write("# a comment\n")
+    nc.caching_execute(counting, root=root)(fake_run(page))
+    assert len(calls) == 4
+
+
 def test_a_failed_execution_is_not_cached(root):
     page = write_notebook(root / "book" / "bad.ipynb", "print(1)", "raise ValueError('boom')")
     result = nc.caching_execute(EXECUTE, root=root)(NotebookRun(page, 60))

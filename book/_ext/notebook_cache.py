@@ -4,7 +4,9 @@
 each one again. Instead, the test run stores every notebook it executed without error in a
 jupyter-cache (``conftest.py`` wraps nbmake's execution with :func:`caching_execute`), and
 the book build (``execute_notebooks: cache`` in ``_config.yml``) takes a chapter's outputs from
-there when it finds them, and executes and stores the others itself.
+there when it finds them, and executes and stores the others itself. The other way round, a test
+run that finds a chapter in the cache, executed without error for the same sources, does not
+execute it again: ``make book`` then ``make test`` computes each chapter once.
 
 Jupyter-cache matches a notebook by its code cells and kernelspec only, never by the code they
 import. The cache therefore lives in a folder named after :func:`source_key`, a hash of everything
@@ -33,6 +35,7 @@ from pathlib import Path
 import nbformat
 from jupyter_cache import get_cache
 from jupyter_cache.base import CacheBundleIn
+from nbmake.nb_result import NotebookResult
 from sphinx.application import ENV_PICKLE_FILENAME
 from sphinx.errors import ExtensionError
 
@@ -204,6 +207,34 @@ def store_execution(folder, source, executed, uri, seconds):
     return get_cache(str(folder)).cache_notebook_bundle(bundle, check_validity=False, overwrite=True)
 
 
+def cached_execution(folder, source):
+    """The executed notebook stored for ``source`` in the jupyter-cache at ``folder``, or None.
+
+    Parameters
+    ----------
+    folder : path-like
+        The cache folder of the current sources (:func:`cache_path`).
+    source : nbformat.NotebookNode
+        The notebook as stored in the book.
+
+    Returns
+    -------
+    nbformat.NotebookNode or None
+        ``source`` with the stored outputs merged in, if the folder holds an execution of the
+        same code cells without an error output (only such executions are ever stored: by
+        :func:`store_execution` and by a book build, which fails on any cell error); None if
+        there is none.
+    """
+    folder = Path(folder)
+    if not (folder / "global.db").is_file():
+        return None
+    try:
+        _, merged = get_cache(str(folder)).merge_match_into_notebook(copy.deepcopy(source))
+    except KeyError:
+        return None
+    return None if error_outputs(merged) else merged
+
+
 def caching_execute(execute, root=ROOT, kernel_env=None):
     """Wrap nbmake's ``NotebookRun.execute`` so that every successful execution is cached.
 
@@ -220,10 +251,14 @@ def caching_execute(execute, root=ROOT, kernel_env=None):
     Returns
     -------
     callable
-        The wrapped method, returning what ``execute`` returns. It stores the executed notebook in
-        :func:`cache_path` (deleting the folders of other sources) only if the execution raised no
-        error, no cell holds an error output, the notebook ran in its own kernel, nbmake was not
-        only looking for import errors, and the sources did not change while it ran.
+        The wrapped method, returning what ``execute`` returns. A notebook that
+        :func:`cache_path` already holds, executed without error for the current sources (by
+        the book build or an earlier test run), is not executed again: its stored execution is
+        returned (:func:`cached_execution`), so ``make book`` then ``make test`` computes each
+        chapter once. Otherwise it executes and stores the executed notebook in
+        :func:`cache_path` (deleting the folders of other sources) only if the execution raised
+        no error, no cell holds an error output, the notebook ran in its own kernel, nbmake was
+        not only looking for import errors, and the sources did not change while it ran.
     """
     env = dict(kernel_env or {})
 
@@ -231,11 +266,17 @@ def caching_execute(execute, root=ROOT, kernel_env=None):
     def run_and_store(run):
         source = nbformat.read(str(run.filename), as_version=4)
         key = source_key(root)
+        own_kernel = run.kernel in (None, source.metadata.get("kernelspec", {}).get("name"))
+        if own_kernel and not run.find_import_errors:
+            done = cached_execution(cache_path(root, key), source)
+            if done is not None:
+                # executed without error for these very sources (by a book build or an earlier
+                # test run): the chapter is not computed a second time
+                return NotebookResult(nb=done, error=None)
         start = time.perf_counter()
         with environ(env):
             result = execute(run)
         seconds = time.perf_counter() - start
-        own_kernel = run.kernel in (None, source.metadata.get("kernelspec", {}).get("name"))
         if (result.error is None and not error_outputs(result.nb) and own_kernel
                 and not run.find_import_errors and source_key(root) == key):
             # one writer at a time: the workers of ``pytest -n`` store chapters concurrently
