@@ -360,13 +360,16 @@ def tune_controller(plant, disturbances, horizons, starts, *, structure: str = "
 
     Examples
     --------
-    A static feedforward on ŵ cancels a matched disturbance (ẋ = −x + d + u, z = [x; 0.1 u]):
+    A static feedforward on ŵ nearly cancels a matched disturbance (ẋ = −x + d + u, z = [x; 0.1 u]):
+    the energy of z over 200 s from rest falls from 80 (the start, u = 0) to about 0.1² ∫d² = 1,
+    the price of u ≈ −d:
 
     >>> from fdsc import Plant
     >>> p = Plant([[-1.0]], [[1.0]], [[1.0]], [[1.0], [0.0]], [[0.0], [0.0]], [[0.0], [0.1]])
     >>> res = tune_controller(p, [Sinusoids([1.0], [0.5])], [200.0], [[[0.0]]], feedforward="static")
-    >>> round(float(res.controller.F[0, 0]), 2), res.controller.reads_estimate
-    (-0.99, True)
+    >>> energies = np.exp([*res.start_objectives, res.objective])      # one draw: J = log energy
+    >>> res.controller.reads_estimate, np.round(energies, 2).tolist()
+    (True, [80.13, 0.99])
     """
     plant = as_plant(plant)
     structure = as_choice("structure", structure, STRUCTURES)

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from numpy.testing import assert_allclose
+from numpy.testing import assert_allclose, assert_array_equal
 
 import fdsc
 from fdsc import (
@@ -19,9 +19,12 @@ from fdsc import (
     Band,
     Controller,
     EnergyUnderflowWarning,
+    LTISystem,
     Piecewise,
     Plant,
     Sinusoids,
+    band_peak,
+    band_weight,
     dominating_gain,
     fit_shaping_filter,
     h2_controller,
@@ -53,6 +56,34 @@ SCALES = [("z", s) for s in (1e-4, 1e-2, 1e2, 1e6)] + [("d", s) for s in (1e-4, 
 
 
 # --- A. the synthesis LMIs do not depend on the units of z and d ---------------------------------
+# The gain an LMI returns is not unique (the optimum leaves it free along flat directions, and
+# which optimizer the solver lands on depends on rounding: an AMD EPYC gave the H∞ gain 2.5e-4
+# away from this machine's at z × 1e-4). What is unique is γ and what the returned controller
+# achieves on the plant in its original units, so that is what these tests compare.
+
+def _weighted_norm(plant, controller, lf, hf, u_penalty):
+    """‖[W z; ρ u]‖∞ of the controller's loop (W the default weight of ``band_weight(lf, hf, 1, 1)``
+    on each output, ρ = ``u_penalty``): the norm weighted_hinf's γ bounds, by a refined sweep."""
+    nz, m, n = plant.C.shape[0], plant.n_controls, plant.n_states
+    with_u = Plant(plant.A, plant.B1, plant.B2, np.vstack([plant.C, np.zeros((m, n))]),
+                   np.vstack([plant.D1, np.zeros((m, plant.B1.shape[1]))]), np.vstack([plant.D2, np.eye(m)]))
+    loop = controller.closed_loop(with_u)
+    W = band_weight(lf, hf, 1.0, 1.0)
+    Aw, Bw, Cw, Dw = (np.kron(np.eye(nz), M) for M in (W.A, W.B, W.C, W.D))
+    Cz, Cu, Dz, Du = loop.C[:nz], loop.C[nz:], loop.D[:nz], loop.D[nz:]
+    nl, nw = loop.A.shape[0], Aw.shape[0]
+    weighted = LTISystem(np.block([[loop.A, np.zeros((nl, nw))], [Bw @ Cz, Aw]]),
+                         np.vstack([loop.B, Bw @ Dz]),
+                         np.block([[Dw @ Cz, Cw], [u_penalty * Cu, np.zeros((m, nw))]]),
+                         np.vstack([Dw @ Dz, u_penalty * Du]))
+    return band_peak(weighted, Band.entire()).gamma
+
+
+# ‖[W z; ρ u]‖∞ of the best state feedback on the aircraft with its weight's states (LF and HF
+# weights 1, ρ = 1e-2): a Riccati bisection on the augmented plant (an independent method); no
+# controller weighted_hinf can return does better
+WEIGHTED_OPTIMUM = 0.3781981
+
 
 @pytest.fixture(scope="module")
 def weighted_reference():
@@ -62,27 +93,37 @@ def weighted_reference():
 
 @pytest.mark.parametrize(("which", "s"), SCALES)
 def test_weighted_hinf_gives_the_same_design_in_any_units_of_z_and_d(weighted_reference, which, s):
-    # z in other units scales γ, the peaks and (to keep the same problem) the u penalty by s;
-    # d in other units scales γ and the peaks by s. Before: z × 1e-4 gave a SolverError, z × 1e-2
-    # a γ 2e-3 looser, z × 1e2 an LF peak 8e-3 off, z × 1e6 an InfeasibleError
+    # z in other units scales γ and (to keep the same problem) the u penalty by s; d in other
+    # units scales γ by s. Before: z × 1e-4 gave a SolverError, z × 1e-2 a γ 2e-3 looser, z × 1e2
+    # an LF peak 8e-3 off, z × 1e6 an InfeasibleError
     bands = paper_bands()
     plant = _rescaled(aircraft(), **{which: s})
     des = weighted_hinf(plant, bands["LF"], bands["HF"], 1.0, 1.0,
                         u_penalty=1e-2 * (s if which == "z" else 1.0))
     ref = weighted_reference
     assert_allclose(des.gamma / s, ref.gamma, rtol=1e-6)
-    assert_allclose([des.peaks["LF"] / s, des.peaks["HF"] / s], [ref.peaks["LF"], ref.peaks["HF"]],
-                    rtol=1e-3)
+    # the controller (from x to u, whose units do not change) designed in the other units, on the
+    # plant in the original ones: its weighted norm lies between the optimum WEIGHTED_OPTIMUM and
+    # the reference's certified γ (plus the 1e-5 the synthesis allows its sweep above it). This
+    # nearly singular LMI (ρ = 1e-2) has its γ 0.66 % above the optimum, and its optimizers may
+    # achieve anything in between, so the achieved norm is bracketed, not matched; the band peaks
+    # are not compared at all (the weighted norm leaves them free, weighted_hinf's Notes)
+    achieved = _weighted_norm(aircraft(), des.controller, bands["LF"], bands["HF"], 1e-2)
+    assert WEIGHTED_OPTIMUM * (1 - 1e-6) <= achieved <= ref.gamma * (1 + 2e-5)
 
 
 @pytest.mark.parametrize(("which", "s"), SCALES)
-def test_synthesize_hinf_gives_the_same_gain_in_any_units_of_z_and_d(which, s):
-    # the gain from x to u does not depend on the units of z or d; γ scales by s. Before: z × 1e-4
-    # gave a γ_lmi 2.7 times the true one, z × 1e6 an InfeasibleError
+def test_synthesize_hinf_gives_the_same_design_in_any_units_of_z_and_d(which, s):
+    # γ_lmi scales by s, and the gain designed in the other units (x and u keep theirs) achieves
+    # on the original plant the reference's H∞ norm: every optimizer of the LMI achieves a norm
+    # between the H∞ optimum 0.4027932 (a Riccati bisection) and γ_lmi = 0.4027966 (plus the 1e-5
+    # the synthesis allows its sweep above it), so the norms agree to 2e-5 on any machine.
+    # Before: z × 1e-4 gave a γ_lmi 2.7 times the true one, z × 1e6 an InfeasibleError
     ref = synthesize_hinf(aircraft())
     res = synthesize_hinf(_rescaled(aircraft(), **{which: s}))
-    assert_allclose([res.gamma_lmi / s, res.gamma_sweep / s], [ref.gamma_lmi, ref.gamma_sweep], rtol=1e-6)
-    assert_allclose(res.K, ref.K, rtol=1e-4, atol=1e-4 * np.abs(ref.K).max())
+    assert_allclose(res.gamma_lmi / s, ref.gamma_lmi, rtol=1e-6)
+    achieved = band_peak(aircraft().closed_loop(res.K), Band.entire()).gamma
+    assert_allclose([achieved, res.gamma_sweep / s], ref.gamma_sweep, rtol=2e-5)
 
 
 # --- B. the controller's size finds its peak ----------------------------------------------------
@@ -222,13 +263,21 @@ def test_every_function_takes_a_python_control_plant_with_the_disturbance_first(
     control = pytest.importorskip("control")
     # one rule (fdsc.as_plant): a StateSpace's inputs are [d; u], the first the disturbance
     ss = control.ss(OSC.A, np.hstack([OSC.B1, OSC.B2]), OSC.C, np.hstack([OSC.D1, OSC.D2]))
+    converted = fdsc.as_plant(ss)
+    assert converted.B1.shape == (2, 1)
+    for name in ("A", "B1", "B2", "C", "D1", "D2"):
+        assert_array_equal(getattr(converted, name), getattr(OSC, name))
+    # each function, given the StateSpace, solves the same problem: the same optimal γ (to the
+    # solver's accuracy) and, for a design, the same achieved norm; the LQR-based H2 gain is unique
     lf, hf = Band.lf(1.0), Band.hf(10.0)
     assert_allclose(weighted_hinf(ss, lf, hf, 1.0, 1.0, u_penalty=0.1).gamma,
-                    weighted_hinf(OSC, lf, hf, 1.0, 1.0, u_penalty=0.1).gamma, rtol=1e-12)
+                    weighted_hinf(OSC, lf, hf, 1.0, 1.0, u_penalty=0.1).gamma, rtol=1e-6)
     F = shaping_filter([12.0], [0.1], [1.0])
     assert_allclose(h2_controller(ss, F).D, h2_controller(OSC, F).D, rtol=1e-12)
-    assert_allclose(synthesize_hinf(ss).K, synthesize_hinf(OSC).K, rtol=1e-12)
-    assert fdsc.as_plant(ss).B1.shape == (2, 1)
+    from_ss, ref = synthesize_hinf(ss), synthesize_hinf(OSC)
+    assert_allclose(from_ss.gamma_lmi, ref.gamma_lmi, rtol=1e-6)
+    # OSC's γ_lmi is 5e-7 above the norm its gain achieves: every optimizer achieves within that
+    assert_allclose(band_peak(OSC.closed_loop(from_ss.K), Band.entire()).gamma, ref.gamma_sweep, rtol=2e-5)
 
 
 def test_dominating_gain_names_the_start():

@@ -6,7 +6,6 @@ from numpy.testing import assert_allclose
 from fdsc import Band, InfeasibleError, Plant, band_peak, random_plant
 from fdsc.lmi import gkyp_gamma
 from fdsc.paper.shared.data import aircraft, paper_bands, paper_gains
-from fdsc.paper.shared.verdict import verdict
 from fdsc.synthesis import SWEEP_RTOL, check_stabilizable, optimize_gain, synthesize, synthesize_hinf
 
 
@@ -20,17 +19,31 @@ def test_band_designs_on_the_aircraft_are_certified(kind):
     assert_allclose(cert.gamma, res.gamma_sweep, rtol=1e-5)
 
 
-def test_hinf_design_and_printed_gains():
+def test_hinf_design_achieves_the_norm_of_the_printed_gains():
+    # finding: our H∞ design achieves the H∞ norm of the printed K_e (and of K_f2, whose peak is
+    # also its H∞ norm). The gain is not compared: the LMI leaves it free along a flat direction
+    # (its entries move by 2.5e-4 between CPUs), but every optimizer achieves a norm between the
+    # H∞ optimum 0.4027932 (a Riccati bisection) and γ_lmi = 0.4027966 (plus the SWEEP_RTOL the
+    # synthesis allows its sweep above it); both printed gains achieve 0.4027932
     res = synthesize_hinf(aircraft())
     assert res.gamma_sweep <= res.gamma_lmi * (1 + SWEEP_RTOL)
-    # finding: our H-infinity gain agrees with the printed K_e (and K_f2) to 0.1 %
-    assert verdict(paper_gains()["K_e"], res.K) == "close"
-    assert verdict(paper_gains()["K_f2"], res.K) == "close"
+    ours = band_peak(aircraft().closed_loop(res.K), Band.entire()).gamma
+    for name in ("K_e", "K_f2"):
+        printed = band_peak(aircraft().closed_loop(paper_gains()[name]), Band.entire()).gamma
+        assert_allclose(ours, printed, rtol=2e-5, err_msg=name)
 
 
-def test_lf_design_reproduces_k_f1():
-    res = synthesize(aircraft(), paper_bands()["LF"])
-    assert verdict(paper_gains()["K_f1"], res.K) == "close"
+def test_lf_design_achieves_the_lf_peak_of_k_f1():
+    # the printed K_f1 is within our LMI's certified bound (so it can be an optimizer of it), and
+    # our design's LF peak is K_f1's to 2e-3: every optimizer achieves between the least LF peak a
+    # direct search finds (0.37332, a gain twice K_f1's size: γ is flat along the gain's size) and
+    # γ_lmi = 0.37394, and K_f1 achieves 0.37374. Not the gain (ours is 5.6e-4 from K_f1 here,
+    # and moves along that flat direction with the solver's rounding)
+    lf = paper_bands()["LF"]
+    res = synthesize(aircraft(), lf)
+    printed = band_peak(aircraft().closed_loop(paper_gains()["K_f1"]), lf).gamma
+    assert printed <= res.gamma_lmi * (1 + 1e-6)
+    assert_allclose(band_peak(aircraft().closed_loop(res.K), lf).gamma, printed, rtol=2e-3)
 
 
 def dual_lmi_at_fixed_gain(plant, band, K, complex_slack):

@@ -55,20 +55,24 @@ def test_an_ill_conditioned_eigenbasis_falls_back_to_the_block_exponentials():
     assert ce(loop)[0] == pytest.approx(loop_energy(loop, D, 22.0), rel=1e-12)
 
 
+def _mean_log_energy(plant, gain, ds, hs):
+    """The tuning objective of a static gain, evaluated directly (one exact energy per draw)."""
+    cl = plant.closed_loop(gain)
+    return float(np.mean([math.log(loop_energy(cl, d, h)) for d, h in zip(ds, hs, strict=True)]))
+
+
 def test_a_scalar_static_gain_tunes_to_the_one_dimensional_optimum():
-    # ẋ = −x + d + u, z = [x; 0.5 u]: one gain k, found by a bounded scalar search on the same
-    # exact objective
+    # ẋ = −x + d + u, z = [x; 0.5 u]: one gain k, the optimum found by a bounded scalar search on
+    # the same exact objective. Compared: the optimal value, and the value the tuned gain achieves
+    # (evaluated here, not as the search reports it); not the gain, which a local search pins only
+    # to about the square root of its objective's tolerance
     plant = Plant([[-1.0]], [[1.0]], [[1.0]], [[1.0], [0.0]], [[0.0], [0.0]], [[0.0], [0.5]])
     ds, hs = [Sinusoids([1.0], [0.3]), Sinusoids([1.0], [2.0])], [40.0, 40.0]
-
-    def J(k):
-        cl = plant.closed_loop([[k]])
-        return np.mean([math.log(loop_energy(cl, d, h)) for d, h in zip(ds, hs, strict=True)])
-
-    ref = minimize_scalar(J, bounds=(-20.0, 0.9), method="bounded", options={"xatol": 1e-9})
+    ref = minimize_scalar(lambda k: _mean_log_energy(plant, [[k]], ds, hs), bounds=(-20.0, 0.9),
+                          method="bounded", options={"xatol": 1e-9})
     res = tune_controller(plant, ds, hs, [[[0.0]]])
-    assert res.controller.gain[0, 0] == pytest.approx(ref.x, abs=1e-4)
     assert res.objective == pytest.approx(ref.fun, abs=1e-9) and res.objective < res.start_objectives[0]
+    assert _mean_log_energy(plant, res.controller.gain, ds, hs) == pytest.approx(ref.fun, abs=1e-9)
 
 
 def test_a_filtered_search_starts_where_the_static_one_ends_and_only_improves():
@@ -126,11 +130,14 @@ def test_a_search_that_finds_no_stabilizing_controller_raises_naming_starts():
 
 @pytest.mark.parametrize("factor", [1e-160, 1e150])
 def test_the_tuned_gain_does_not_depend_on_the_disturbances_units(factor):
-    # energies near 1e-320 were clipped at 1e-300: the objective went flat and the search stopped
+    # energies near 1e-320 were clipped at 1e-300: the objective went flat and the search stopped.
+    # The gain tuned on the scaled draws, run on the draws as given, achieves the optimum tuned on
+    # them (the gains themselves differ in their last digits: 6e-7 here, the search's resolution)
     a = tune_controller(_P1, _DS1, [40.0, 40.0], [[[0.0]]])
     b = tune_controller(_P1, [d.scaled(factor) for d in _DS1], [40.0, 40.0], [[[0.0]]])
     assert b.objective - a.objective == pytest.approx(2 * math.log(factor), abs=1e-8)
-    np.testing.assert_allclose(b.controller.gain, a.controller.gain, rtol=1e-5)
+    achieved = _mean_log_energy(_P1, b.controller.gain, _DS1, [40.0, 40.0])
+    assert achieved == pytest.approx(a.objective, abs=1e-8)
 
 
 def test_an_unmeetable_hinf_cap_raises_instead_of_returning_a_controller_above_it():

@@ -25,10 +25,12 @@ from fdsc.paper.reproduced.passive_controllers import (
     sigma_curves,
     sigma_sensitivity,
 )
+from fdsc.paper.reproduced.passive_gains import UNPRINTED
 from fdsc.paper.shared.data import aircraft, paper_bands, paper_gains
 from fdsc.paper.shared.names import GAIN_ORDER
+from fdsc.paper.shared.prose import num
 from fdsc.paper.shared.results import RecordPart
-from fdsc.paper.shared.verdict import VERDICTS
+from fdsc.paper.shared.verdict import VERDICTS, verdict
 
 REQUIRED = {"id", "source", "paper", "recomputed", "verdict", "note"}
 
@@ -71,18 +73,33 @@ def test_gain_comparison_against_an_independent_computation(designs):
                                            rel=1e-12)
         assert g.gamma_paper_gain == pytest.approx(
             band_peak(plant.closed_loop(Kp), bands[g.band]).gamma, rel=1e-12)
-    # LF, MF and H∞ reproduce the printed gains to about their printed digits
-    assert [cmp[n].verdict for n in ("K_f1", "K_f2", "K_e")] == ["close", "close", "close"]
-    assert cmp["K_f1"].fastest_pole < -100  # high-gain design
+    # each row's verdict is the verdict rule applied to its two gains
+    for g in cmp.gains:
+        assert g.verdict == verdict(g.paper_K, g.ours_K, unprinted=UNPRINTED[g.band]), g.name
+    # LF, MF and H∞ designs achieve the in-band peaks of the printed gains. Not their gains: γ is
+    # flat along a direction of the gain, and which optimizer the solver returns moves with its
+    # rounding (the verdict of a gain is not a test of the code). Every optimizer's peak lies
+    # between the least one (LF: 0.37332 by a direct search; MF, H∞: 0.4027932 by a Riccati
+    # bisection) and γ_lmi plus the 1e-5 the synthesis allows: within 2e-3 (LF) and 2e-5 (MF,
+    # H∞) of the printed gains' 0.37374 and 0.4027932
+    for name, rtol in (("K_f1", 2e-3), ("K_f2", 2e-5), ("K_e", 2e-5)):
+        assert_allclose(cmp[name].gamma_sweep, cmp[name].gamma_paper_gain, rtol=rtol, err_msg=name)
+    # high-gain design (−304 here); a gain a third of K_f1's, with its pole at −100, has an LF peak
+    # 3.8 % above γ_lmi, which no optimizer's may exceed
+    assert cmp["K_f1"].fastest_pole < -100
     # the printed precision (four decimals), rows separated by semicolons: no raw array
     assert cmp.rows()[0]["paper_K"] == "[0.1048, 15.0897; 0.0205, 2.9760]"
     shown = cmp.display_rows()
     assert [r["verdict"] for r in shown] == [g.verdict for g in cmp.gains]
     assert all(isinstance(v, str) for r in shown for v in r.values())
     text = cmp.prose()
+    # the relative difference of the gains, with two significant digits, in the book's notation
+    assert text["rel_K_f1"] == num(cmp["K_f1"].rel_diff, 2) and "e" not in text["rel_K_f1"]
     # the HF design needs σ and ε, which Sec. IV does not print: K_f3, which ours does not
-    # recompute, is not reproducible by the verdict rules (not "differs")
-    assert text["rel_K_f1"] == "5.6 × 10⁻⁴" and text["verdict_K_f3"] == "not reproducible"
+    # recompute, is not reproducible by the verdict rules (not "differs"). It is not an optimizer of
+    # our σ = 0 LMI either: its HF peak (1.605) exceeds that LMI's optimum (1.600)
+    assert text["verdict_K_f3"] == "not reproducible"
+    assert cmp["K_f3"].gamma_paper_gain > cmp["K_f3"].gamma_lmi * (1 + 1e-3)
     assert text["fast_pole_lo"].startswith("−")     # a pole, printed with a true minus sign
 
 
@@ -158,7 +175,14 @@ def test_epsilon_scan_states_the_range_of_each_spread():
     text = scan.prose()
     assert (text["grid_lo"], text["grid_hi"], text["mid_lo"], text["mid_hi"]) == ("0.001", "10", "0.01", "1")
     assert scan.spread_over(1e-3, 10.0) == scan.spread
-    assert scan.spread_over(1e-2, 1.0) < 1e-3 * scan.spread
+    mid = (scan.epsilon >= 1e-2) & (scan.epsilon <= 1.0)
+    g = scan.gamma_sweep[mid]
+    assert scan.spread_over(1e-2, 1.0) == pytest.approx(g.max() / g.min() - 1, rel=1e-12)
+    # what makes the two spreads differ, in the unique optimal values: over [0.01, 1] the LMI's γ
+    # does not move (to the solver's accuracy), over the whole grid it moves by more than 20 %.
+    # (The achieved peaks are between the LF optimum and γ_lmi, 1.7e-3 apart: not compared)
+    lmi = scan.gamma_lmi
+    assert lmi[mid].max() / lmi[mid].min() - 1 < 1e-6 and lmi.max() / lmi.min() - 1 > 0.2
     assert [r["epsilon"] for r in scan.display_rows()] == ["0.001", "0.01", "0.1", "1", "10"]
     with pytest.raises(ValueError, match="lo, hi must enclose"):
         scan.spread_over(2.0, 3.0)

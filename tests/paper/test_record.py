@@ -1,7 +1,10 @@
 import numpy as np
 import pytest
+from numpy.testing import assert_allclose
 
+from fdsc import Band, band_peak
 from fdsc.paper.record import FIGURE_IDS, reproduction_record
+from fdsc.paper.shared.data import aircraft
 from fdsc.paper.shared.verdict import VERDICTS
 
 
@@ -20,7 +23,13 @@ def test_record_entries_have_the_required_fields():
         for per_band in by_id[key]["recomputed"].values():
             assert set(per_band) == {"LF", "MF", "HF", "EF"}
     # K_f3 depends on σ and ε, which the paper does not print: its own rule says "not reproducible"
-    assert by_id["K_f3"]["verdict"] == "not reproducible" and by_id["K_e"]["verdict"] == "close"
+    assert by_id["K_f3"]["verdict"] == "not reproducible"
+    # the recomputed K_e achieves the printed K_e's H∞ norm (every optimizer of the H∞ LMI achieves
+    # between the optimum 0.4027932 and γ_lmi = 0.4027966, plus the 1e-5 the synthesis allows its
+    # sweep above it); the recomputed gain itself is one optimizer among many, not compared
+    norms = [band_peak(aircraft().closed_loop(np.array(by_id["K_e"][k])), Band.entire()).gamma
+             for k in ("recomputed", "paper")]
+    assert_allclose(*norms, rtol=2e-5)
     # one verdict per printed bound, by the quantity the text states (the band peak of σ_max):
     # K_f2's peak 0.40279 is close to 0.4025, the other three are far from theirs
     assert [by_id[f"bound_{k}"]["verdict"] for k in ("f1", "f2", "f3", "e")] == [
