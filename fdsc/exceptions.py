@@ -18,6 +18,7 @@ __all__ = [
     "EnergyOverflowError",
     "EnergyUnderflowWarning",
     "UnstableRunWarning",
+    "ResolutionWarning",
 ]
 
 
@@ -154,3 +155,14 @@ class EnergyUnderflowWarning(UserWarning):
 
 class UnstableRunWarning(UserWarning):
     """A simulated loop has a mode that is not Hurwitz (its finite results may still grow)."""
+
+
+class ResolutionWarning(UserWarning):
+    """Tones identified from a window of samples lie closer than the window resolves: two tones
+    closer than its Rayleigh resolution 2π/T (T the window's length), or a tone within half of it
+    (π/T) of the Nyquist frequency π/step, where its samples barely tell it from its alias.
+
+    Their frequencies may still be right (on exact samples the identification separates them
+    below that resolution), but their amplitudes and phases are ill-conditioned: a small error in
+    the samples moves them much (at π/step exactly, only ``a sin φ`` of ``a sin(ωt + φ)`` is seen).
+    """

@@ -48,6 +48,12 @@ __all__ = ["LQData", "lq_data", "NoncausalLimit", "noncausal_limit", "tone_limit
 
 #: The largest relative residual of the Riccati equation :func:`lq_data` accepts.
 RICCATI_RTOL = 1e-8
+#: :func:`lq_data` takes D2 to lack full column rank where its smallest singular value is at most
+#: this share of the size of z's map ``‖[C D1 D2]‖₂`` (a test that does not depend on z's units).
+RANK_RTOL = 1e-12
+#: :func:`noncausal_limit` warns when its run meets the end condition ``P x(H) + ξ(H) = 0`` only to
+#: a relative error above this.
+END_RTOL = 1e-8
 #: :func:`noncausal_limit` warns when the rounding of the closed-form terms it sums (eps times
 #: their size) may exceed this share of its energy.
 CANCEL_RTOL = 1e-6
@@ -129,9 +135,15 @@ def lq_data(plant) -> LQData:
     Raises
     ------
     ValueError
-        If D2 does not have full column rank (u is not penalized in z: the limit is not
-        finite), or the Riccati equation has no stabilizing solution or is solved inaccurately
-        (relative residual above :data:`RICCATI_RTOL`).
+        If D2 does not have full column rank (its smallest singular value at most
+        :data:`RANK_RTOL` of ``‖[C D1 D2]‖₂``: u is not penalized in z, the limit is not
+        finite), the Riccati equation has no stabilizing solution or is solved inaccurately
+        (relative residual above :data:`RICCATI_RTOL`), or P leaves the float range in z's units.
+
+    Notes
+    -----
+    The problem is solved with z in units where ``‖[C D1 D2]‖₂`` lies in [1/2, 1) (a power of
+    two, exact) and brought back: the rank test and the solve do not depend on z's units.
 
     Examples
     --------
@@ -144,11 +156,20 @@ def lq_data(plant) -> LQData:
 
     plant = as_plant(plant)
     A, B1, B2, C, D1, D2 = plant.A, plant.B1, plant.B2, plant.C, plant.D1, plant.D2
-    R = D2.T @ D2
+    # solved with z in units where its map [C D1 D2] has a norm in [1/2, 1) (a power of two,
+    # exact): P, F and the cost scale with z's units squared and the gains not at all, so neither
+    # the rank test nor the Riccati solve depends on them (z × 1e-13 or × 1e60 is the same problem)
+    size = float(np.linalg.norm(np.hstack([C, D1, D2]), 2))
+    ez = math.frexp(size)[1] if size > 0 else 0
+    C, D1, D2 = (np.ldexp(M, -ez) for M in (C, D1, D2))
     s = np.linalg.svd(D2, compute_uv=False)
-    if s.size < D2.shape[1] or s.min() <= 1e-12 * max(1.0, s.max()):
-        raise ValueError("plant: D2 must have full column rank (every control penalized in z), so that "
-                         "the least energy is finite; add a penalty ρ u to z")
+    smallest = float(np.ldexp(s.min(), ez)) if s.size == D2.shape[1] else 0.0
+    if not smallest > RANK_RTOL * size:
+        raise ValueError(f"plant: D2 must have full column rank (every control penalized in z), so that the "
+                         f"least energy is finite, but its smallest singular value is {smallest:.3g}, "
+                         f"{smallest / size if size else 0.0:.3g} of the size of z's map ‖[C D1 D2]‖ = "
+                         f"{size:.3g} (at most {RANK_RTOL:g} of it counts as 0); add a penalty ρ u to z")
+    R = D2.T @ D2
     Ri = np.linalg.inv(R)
     G = Ri @ D2.T                                      # R⁻¹D2ᵀ
     At = A - B2 @ G @ C
@@ -179,7 +200,19 @@ def lq_data(plant) -> LQData:
                          f"{complex(lam[np.argmax(lam.real)]):.4g}): a mode the cost does not see")
     N = C.T @ Pi @ D1
     K = -(G @ C + RiB @ P)
-    return LQData(P, K, -G @ D1, A_c, RiB, P @ B1t + N, S, B1t, Pi @ C - D2 @ RiB @ P, -D2 @ RiB, Pi @ D1)
+    # back to z's units: P, F as z², Cz, Dz_d as z, R⁻¹B2ᵀ, S as z⁻², Dz_xi as z⁻¹ (ξ is as z²)
+    scaled = {"P": (P, 2), "R_inv_B2T": (RiB, -2), "F": (P @ B1t + N, 2), "S": (S, -2),
+              "Cz": (Pi @ C - D2 @ RiB @ P, 1), "Dz_xi": (-D2 @ RiB, -1), "Dz_d": (Pi @ D1, 1)}
+    tiny = np.finfo(float).tiny
+    back = {}
+    for name, (M, power) in scaled.items():
+        with np.errstate(over="ignore", under="ignore"):
+            back[name] = np.ldexp(M, power * ez)
+        if not np.all(np.isfinite(back[name])) or np.any((np.abs(M) >= tiny) & (np.abs(back[name]) < tiny)):
+            raise ValueError(f"plant: the LQ quantity {name} leaves the float range in z's units (the size "
+                             f"of z's map ‖[C D1 D2]‖ is {size:.3g}): rescale z")
+    return LQData(back["P"], K, -G @ D1, A_c, back["R_inv_B2T"], back["F"], back["S"], B1t, back["Cz"],
+                  back["Dz_xi"], back["Dz_d"])
 
 
 def _pieces(d, horizon):
@@ -206,6 +239,9 @@ class NoncausalLimit:
         Per piece, the closed-form terms of x, ξ and d (what :meth:`trajectory` evaluates).
     _scale : int
         The terms are those of the run with d and x0 times 2^−_scale (see :func:`noncausal_limit`).
+    _state_scale : (n,) ndarray
+        The terms are in the balanced state ``x̃ = x / _state_scale`` (powers of two; the
+        adjoint ``ξ̃ = ξ · _state_scale``), see :func:`noncausal_limit`.
     """
 
     energy: float
@@ -217,6 +253,7 @@ class NoncausalLimit:
     _xi_terms: tuple = field(repr=False, default=())
     _d_terms: tuple = field(repr=False, default=())
     _scale: int = field(repr=False, default=0)
+    _state_scale: np.ndarray | None = field(repr=False, default=None)
 
     def trajectory(self, t: ArrayLike) -> dict:
         """The optimal trajectory at times t (closed forms, no simulation).
@@ -253,6 +290,8 @@ class NoncausalLimit:
                 if e.size:
                     ex = np.exp(e[None, :] * (tau[:, None] - an[None, :] * L))
                     out[sel] = (ex @ g).real
+        if self._state_scale is not None:          # from the balanced state to the plant's own
+            x, xi = x * self._state_scale[None, :], xi / self._state_scale[None, :]
         u = x @ lq.K.T + dd @ lq.K_d.T - xi @ lq.R_inv_B2T.T
         z = x @ lq.Cz.T + xi @ lq.Dz_xi.T + dd @ lq.Dz_d.T
         out = {"x": x, "u": u, "z": z, "xi": xi}
@@ -304,7 +343,14 @@ def noncausal_limit(plant, d, horizon: float, *, x0=None) -> NoncausalLimit:
     RuntimeWarning
         If the closed-form terms it sums cancel so much that their rounding may exceed
         :data:`CANCEL_RTOL` of the energy (a horizon short against every time scale of the loop
-        and of d); the message gives the bound.
+        and of d); the message gives the bound. Also if the run meets its end condition
+        ``P x(H) + ξ(H) = 0`` only to a relative error above :data:`END_RTOL`.
+
+    Notes
+    -----
+    The run is made in balanced states (``x = T x̃``, T diagonal of powers of two that balances
+    the LQ closed loop, exact), so that the bound does not depend on the units of the states;
+    :attr:`NoncausalLimit.lq` and :meth:`NoncausalLimit.trajectory` are in the plant's own.
 
     Examples
     --------
@@ -324,11 +370,16 @@ def noncausal_limit(plant, d, horizon: float, *, x0=None) -> NoncausalLimit:
     H = as_positive("horizon", horizon)
     n = plant.n_states
     x0 = np.zeros(n) if x0 is None else as_vector("x0", x0, n)
-    lq = lq_data(plant)
+    lq_plant = lq_data(plant)
+    # run in a balanced state x = T x̃ (T diagonal, powers of two, exact), so that the bound does
+    # not depend on the units of the states: written in scaled states, the Lyapunov solve of the
+    # end condition perturbed its equation and the eigenbasis lost its conditioning
+    sca = _state_scale(lq_plant.A_c)
+    lq = _in_state_units(lq_plant, sca)
     # run at a scale (a power of two, exact) where the energies keep their digits: J(2^−e d,
     # 2^−e x0) = 2^−2e J(d, x0)
     e_scale = _scale_exponent(x0, d)
-    x0 = np.ldexp(x0, -e_scale)
+    x0 = np.ldexp(x0, -e_scale) / sca
     pcs = _pieces(_scaled(d, e_scale), H)
     back = Modal(lq.A_c.T, np.eye(n), "the LQ closed loop")
     fwd = Modal(lq.A_c, np.vstack([lq.Cz, np.eye(n)]), "the LQ closed loop")
@@ -342,6 +393,15 @@ def noncausal_limit(plant, d, horizon: float, *, x0=None) -> NoncausalLimit:
             if not np.all(np.isfinite(c)):
                 raise EnergyOverflowError("noncausal_limit: the end condition is not finite")
             xi_at_H = c
+    # the end condition, met by superposition, checked on the run itself: a Lyapunov or linear
+    # solve that lost its digits shows here
+    miss = float(np.max(np.abs(lq.P @ xH + xi_at_H), initial=0.0))      # largest entries: no squares
+    ref = float(np.max(np.abs(lq.P @ xH), initial=0.0) + np.max(np.abs(xi_at_H), initial=0.0))
+    if ref > 0 and not miss <= END_RTOL * ref:
+        warnings.warn(f"noncausal_limit: the end condition P x(H) + ξ(H) = 0 is met only to a relative "
+                      f"{miss / ref:.2g} (above {END_RTOL:g}), even in balanced states: the bound may be off "
+                      "by about that share (a closed loop with nearly undamped or widely spread modes)",
+                      RuntimeWarning, stacklevel=2)
     J = float(np.sum(energies))
     if not math.isfinite(J):
         raise EnergyOverflowError("noncausal_limit: the energy exceeds the float range (about 1.8e308)")
@@ -357,8 +417,8 @@ def noncausal_limit(plant, d, horizon: float, *, x0=None) -> NoncausalLimit:
     with np.errstate(over="ignore", under="ignore"):
         piece_energies = np.ldexp(np.asarray(energies), 2 * e_scale)
     breaks = np.array([p[0] for p in pcs] + [H])
-    return NoncausalLimit(J, H, breaks, piece_energies, lq, tuple(x_terms),
-                          tuple(xi_terms), tuple(d_terms), e_scale)
+    return NoncausalLimit(J, H, breaks, piece_energies, lq_plant, tuple(x_terms),
+                          tuple(xi_terms), tuple(d_terms), e_scale, sca)
 
 
 def _in_units(J, e):
@@ -376,6 +436,24 @@ def _in_units(J, e):
                       "computed at a scale where it keeps them): scale d and x0 up for its digits",
                       EnergyUnderflowWarning, stacklevel=3)
     return out
+
+
+def _state_scale(A):
+    """The diagonal state scaling (powers of two) that balances A: ``x = T x̃`` with
+    ``T = diag(scale)`` and ``T⁻¹ A T`` of comparable row and column norms."""
+    from scipy.linalg import matrix_balance
+
+    if A.size == 0:
+        return np.ones(0)
+    _b, (scale, _perm) = matrix_balance(A, permute=False, separate=True)
+    return np.asarray(scale, dtype=float)
+
+
+def _in_state_units(lq, sca):
+    """The LQ quantities in the state ``x̃ = x / sca`` (adjoint ``ξ̃ = ξ · sca``); exact."""
+    r, c = sca[:, None], sca[None, :]
+    return LQData(lq.P * r * c, lq.K * c, lq.K_d, lq.A_c / r * c, lq.R_inv_B2T / c, lq.F * r, lq.S / r / c,
+                  lq.B1t / r, lq.Cz * c, lq.Dz_xi / c, lq.Dz_d)
 
 
 def _gramian_H(lq, H):
@@ -469,13 +547,18 @@ def tone_limit(plant, omega: ArrayLike) -> np.ndarray:
     lq_data(plant)
     w = as_vector("omega", omega)
     n = plant.n_states
+    # in balanced states (diagonal, powers of two, exact): the bound and the test of a pole do
+    # not depend on the units of the states
+    sca = _state_scale(plant.A)
+    A = plant.A / sca[:, None] * sca[None, :]
+    B1, B2, C = plant.B1 / sca[:, None], plant.B2 / sca[:, None], plant.C * sca[None, :]
     out = np.empty(w.size)
     for k, wk in enumerate(w):
-        M = 1j * wk * np.eye(n) - plant.A
+        M = 1j * wk * np.eye(n) - A
         if np.linalg.cond(M) > 1e14:
             raise ValueError(f"omega[{k}] = {wk} lies on a pole of the plant")
-        G1 = plant.C @ np.linalg.solve(M, plant.B1) + plant.D1
-        G2 = plant.C @ np.linalg.solve(M, plant.B2) + plant.D2
+        G1 = C @ np.linalg.solve(M, B1) + plant.D1
+        G2 = C @ np.linalg.solve(M, B2) + plant.D2
         U, _res, _rank, _sv = np.linalg.lstsq(G2, G1, rcond=None)
         r = G1 - G2 @ U
         out[k] = float(np.real(np.vdot(r, r)))

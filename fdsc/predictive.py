@@ -20,7 +20,8 @@ one. Every ``update`` seconds the law identifies the tones of the last
 differences of the samples (which suppress the slow part), the signal subspace of the lag
 covariance by an eigendecomposition with its rank set by ``rank_tol``, the frequencies from its
 shift invariance, then the amplitudes by least squares with a polynomial trend
-(:func:`identify_tones`). Between updates each identified tone is continued, so the feedforward
+(:func:`identify_tones`, which adds a second pass for directions below ``rank_tol`` that stand
+above the noise). Between updates each identified tone is continued, so the feedforward
 is a sum of tones and the loop is run exactly (:mod:`fdsc._modal`), with no step.
 
 It is realizable: it reads x and samples of ŵ, nothing of the future. The sampler is ideal
@@ -38,6 +39,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._modal import Modal, tone_terms
+from ._tones import _below_rank_tol, _esprit, _fit, _warn_unresolved
 from ._validation import as_count, as_positive, as_vector, check_type
 from .decisions import SCALE_RANGE, _scale_exponent, _scaled, _unscale
 from .exceptions import EnergyOverflowError, EnergyUnderflowWarning
@@ -49,6 +51,19 @@ __all__ = ["ToneEstimate", "identify_tones", "PredictiveRun", "PredictiveLaw"]
 
 #: Defaults of the identification (see :func:`identify_tones`).
 DEFAULT_LAGS, DEFAULT_RANK_TOL, DEFAULT_TREND = 48, 1e-3, 3
+#: A frequency estimated within this share of the window's resolution 2π/T outside the band is
+#: kept: ESPRIT puts a tone that lies on an edge of the closed band within rounding of it, on
+#: either side (up to about 1e-10 of the resolution), and a tone that close to the edge cannot be
+#: told from one on it.
+EDGE_SHARE = 1e-6
+#: :func:`identify_tones` keeps the directions of the lag matrix that stand this many times above
+#: its noise floor (the median singular value of the directions below ``rank_tol``).
+FLOOR_FACTOR = 100.0
+#: The default window of :class:`PredictiveLaw`, in seconds, unless it holds fewer than
+#: :data:`MIN_WINDOW_SAMPLES` samples.
+DEFAULT_WINDOW = 2.0
+#: The fewest samples a window of :class:`PredictiveLaw` holds.
+MIN_WINDOW_SAMPLES = 20
 
 
 @dataclass(frozen=True)
@@ -90,41 +105,6 @@ class ToneEstimate:
         return np.real(np.exp(1j * np.outer(tau, self.frequencies)) @ self.coefficients)
 
 
-def _esprit(y, step, lo, hi, max_tones, lags, rank_tol):
-    """The frequencies in [lo, hi] of the tones in y (module docstring)."""
-    yd = np.diff(y, 2)
-    L = min(lags, yd.size // 2)
-    if L < 3:
-        return np.zeros(0)
-    H = np.lib.stride_tricks.sliding_window_view(yd, L)
-    ev, vec = np.linalg.eigh(H.T @ H)
-    ev, vec = ev[::-1], vec[:, ::-1]
-    if not ev[0] > 0:
-        return np.zeros(0)
-    r = int(min(2 * max_tones, np.sum(ev > rank_tol ** 2 * ev[0]), L - 1))
-    if r < 1:
-        return np.zeros(0)
-    V = vec[:, :r]
-    Phi = np.linalg.lstsq(V[:-1], V[1:], rcond=None)[0]
-    w = np.abs(np.angle(np.linalg.eigvals(Phi))) / step
-    w = np.sort(w[(w >= lo) & (w <= hi)])
-    if w.size:                           # the two roots of a real tone give one frequency
-        w = w[np.r_[True, np.diff(w) > 1e-6 * np.maximum(1.0, w[1:])]]
-    return w
-
-
-def _fit(tau, y, w, trend):
-    """Least-squares amplitudes of tones w with a polynomial trend; (c, residual)."""
-    s = tau / max(-float(tau[0]), 1e-300)
-    cols = [s ** k for k in range(trend + 1)]
-    cols += [f(wi * tau) for wi in w for f in (np.cos, np.sin)]
-    B = np.column_stack(cols)
-    coef, *_ = np.linalg.lstsq(B, y, rcond=None)
-    a, b = coef[trend + 1::2], coef[trend + 2::2]
-    res = y - B @ coef
-    return a - 1j * b, float(np.mean(res ** 2))
-
-
 def identify_tones(samples, step: float, band, *, max_tones: int = 12, lags: int = DEFAULT_LAGS,
                    rank_tol: float = DEFAULT_RANK_TOL, trend: int = DEFAULT_TREND) -> ToneEstimate:
     """The tones of a window of uniform samples in a band (ESPRIT on the second differences,
@@ -137,11 +117,15 @@ def identify_tones(samples, step: float, band, *, max_tones: int = 12, lags: int
     step : float
         The sampling interval (s).
     band : (float, float)
-        The frequencies (rad/s) where tones are sought, ``0 < lo < hi ≤ π/step``.
+        The frequencies (rad/s) where tones are sought, ``0 < lo < hi ≤ π/step``; closed, and a
+        tone estimated within :data:`EDGE_SHARE` of the resolution 2π/T outside it is kept
+        (T the window's length, ``step · (N − 1)``).
     max_tones : int, optional
-        At most this many tones (the signal subspace has at most twice as many dimensions).
+        At most this many tones (the signal subspace has at most twice as many dimensions); the
+        window must hold ``4 max_tones + 4`` samples or more.
     lags : int, optional
-        Columns of the lag matrix (its row count is the rest of the window).
+        Columns of the lag matrix (its row count is the rest of the window), at least
+        ``2 max_tones + 1``.
     rank_tol : float, optional
         Directions of the lag covariance whose singular value is below this fraction (in (0, 1))
         of the largest are noise.
@@ -155,16 +139,34 @@ def identify_tones(samples, step: float, band, *, max_tones: int = 12, lags: int
     Raises
     ------
     ValueError
-        If an argument is out of range or the samples are not finite.
+        If an argument is out of range, the samples are not finite, or there are too few of them
+        for ``max_tones`` (a lag matrix of ``2 max_tones + 1`` columns, two per tone and one for
+        the noise, and as many rows) or for the trend.
     EnergyOverflowError
         If the residual's mean square exceeds the float range (samples above about 1e154).
 
     Warns
     -----
+    ResolutionWarning
+        If two identified tones are closer than the window's resolution 2π/T, or one lies within
+        π/T of the Nyquist frequency π/step: their amplitudes and phases are ill-conditioned.
     EnergyUnderflowWarning
         If the residual's mean square is not 0 but below the smallest normal float (samples
         below about 1e-154; the tones are identified at a scale where the samples are of order
         one, and keep their digits).
+
+    Notes
+    -----
+    ESPRIT keeps the directions of the lag matrix above ``rank_tol``. Directions below it that
+    stand :data:`FLOOR_FACTOR` times above the matrix's noise floor (the median singular value
+    of the rest) are structure, not noise: a slow part that the second differences leave (a
+    quadratic trend becomes a constant), or the split of two tones closer than the window
+    resolves. Left out, they bias the frequencies (by about 1e-5 of the resolution beside a
+    slow drift, and two such tones come back as one); so a second pass identifies the tones with
+    them, and keeps those whose share of the lag matrix (amplitude times the gain
+    ``(2 sin(ω step/2))²`` of the second difference) is at least ``rank_tol`` of the largest.
+    On noisy samples (a floor above ``rank_tol``/:data:`FLOOR_FACTOR`) there is no such
+    direction and the first pass stands. :class:`PredictiveLaw` takes the first pass only.
 
     Examples
     --------
@@ -181,18 +183,32 @@ def identify_tones(samples, step: float, band, *, max_tones: int = 12, lags: int
     lo, hi = _band(band, step)
     max_tones = as_count("max_tones", max_tones, 1)
     lags = as_count("lags", lags, 3)
+    if lags < 2 * max_tones + 1:
+        raise ValueError(f"lags must be at least 2 max_tones + 1 = {2 * max_tones + 1} (two columns of the "
+                         f"lag matrix per tone and one for the noise), but found {lags}: raise lags or "
+                         "lower max_tones")
     rank_tol = _rank_tol(rank_tol)
     trend = as_count("trend", trend, 0)
-    if y.size < 2 * (trend + 1) + 8:
-        raise ValueError(f"samples: at least {2 * (trend + 1) + 8} samples are needed, but found {y.size}")
+    need_trend, need_tones = 2 * (trend + 1) + 8, 4 * max_tones + 4
+    if y.size < max(need_trend, need_tones):
+        why = (f"for a trend of degree {trend} beside the tones" if need_trend >= need_tones else
+               f"for up to max_tones = {max_tones} tones: a lag matrix of the second differences with "
+               f"{2 * max_tones + 1} columns, two per tone and one for the noise, and as many rows; "
+               "lengthen the window or lower max_tones")
+        raise ValueError(f"samples: at least {max(need_trend, need_tones)} samples are needed ({why}), but "
+                         f"found {y.size}")
     # identified at a scale (a power of two, exact) where the lag covariance and the residual's
     # mean square neither overflow nor underflow; the coefficients are linear in the samples
     mag = float(np.max(np.abs(y)))
     e = 0 if mag == 0.0 or 2.0 ** -SCALE_RANGE <= mag <= 2.0 ** SCALE_RANGE else math.frexp(mag)[1]
     y = np.ldexp(y, -e)
-    w = _esprit(y, step, lo, hi, max_tones, lags, rank_tol)
+    w = _esprit(y, step, lo, hi, max_tones, lags, rank_tol, EDGE_SHARE)
+    again = _below_rank_tol(y, step, lo, hi, max_tones, lags, rank_tol, trend, EDGE_SHARE, FLOOR_FACTOR)
+    if again is not None:
+        w = again
     tau = step * (np.arange(y.size) - (y.size - 1))
     c, res = _fit(tau, y, w, trend)
+    _warn_unresolved(w, step, y.size)
     if e:
         c = np.ldexp(c.real, e) + 1j * np.ldexp(c.imag, e)
         with np.errstate(over="ignore", under="ignore"):
@@ -260,7 +276,9 @@ class PredictiveLaw:
     band : (float, float)
         Where tones are identified (rad/s); the rest of ŵ gets the static feedforward ψ(0).
     window : float, optional
-        Seconds of ŵ each identification reads.
+        Seconds of ŵ each identification reads, at least :data:`MIN_WINDOW_SAMPLES` (20)
+        samples. Default the longer of :data:`DEFAULT_WINDOW` (2 s) and 20 samples (``20 · step``),
+        so that the default fits any band.
     update : float, optional
         Seconds between identifications (the first after ``min(window, 0.5)`` s).
     step : float, optional
@@ -282,7 +300,14 @@ class PredictiveLaw:
     Raises
     ------
     ValueError
-        If an argument is out of range, or as :func:`fdsc.noncausal.lq_data`.
+        If an argument is out of range (a window of fewer than 20 samples at the step), or as
+        :func:`fdsc.noncausal.lq_data`.
+
+    Notes
+    -----
+    The law identifies the tones with ESPRIT at the rank ``rank_tol`` sets (the first pass of
+    :func:`identify_tones`; it neither takes the second pass nor warns), as the book's stored
+    study computed it.
 
     Examples
     --------
@@ -298,7 +323,8 @@ class PredictiveLaw:
     True
     """
 
-    def __init__(self, plant, band, *, window: float = 2.0, update: float = 0.5, step: float | None = None,
+    def __init__(self, plant, band, *, window: float | None = None, update: float = 0.5,
+                 step: float | None = None,
                  max_tones: int = 12, lags: int = DEFAULT_LAGS, rank_tol: float = DEFAULT_RANK_TOL,
                  trend: int = DEFAULT_TREND, amplitude_cap: float = 4.0, max_residual: float = 1.0,
                  base=None):
@@ -307,13 +333,17 @@ class PredictiveLaw:
             raise ValueError(f"plant must have one disturbance input, but has {self.plant.B1.shape[1]}")
         lo, hi = _band(band)
         self.band = (lo, hi)
-        self.window = as_positive("window", window)
+        window = None if window is None else as_positive("window", window)
         self.update = as_positive("update", update)
         self.step = math.pi / (1.25 * hi) if step is None else as_positive("step", step)
         _band(band, self.step)
-        if self.window < 20 * self.step:
-            raise ValueError(f"window must hold at least 20 samples ({20 * self.step:.4g} s at step "
-                             f"{self.step:.4g} s), but found {window!r}")
+        shortest = MIN_WINDOW_SAMPLES * self.step
+        self.window = max(DEFAULT_WINDOW, shortest) if window is None else window
+        if self.window < shortest:
+            where = (f"the default step π/(1.25·band[1]) = {self.step:.4g} s" if step is None
+                     else f"step {self.step:.4g} s")
+            raise ValueError(f"window must hold at least {MIN_WINDOW_SAMPLES} samples ({shortest:.4g} s at "
+                             f"{where}), but found {window!r}: lengthen the window or shorten the step")
         self.max_tones = as_count("max_tones", max_tones, 1)
         self.lags = as_count("lags", lags, 3)
         self.rank_tol = _rank_tol(rank_tol)
@@ -364,6 +394,7 @@ class PredictiveLaw:
         what = d if estimate is None else estimate
         if estimate is not None:
             check_type("estimate", estimate, Sinusoids | Piecewise, "an fdsc.Sinusoids or fdsc.Piecewise")
+            _check_covers(estimate, d, H)
         plant, n = self.plant, self.plant.n_states
         x = np.zeros(n) if x0 is None else np.array(as_vector("x0", x0, n))
         # run at a scale (a power of two, exact) where the energies and the identification's lag
@@ -438,7 +469,8 @@ class PredictiveLaw:
             return None
         tt = t - self.step * np.arange(k, -1, -1)
         y = sampled(tt)
-        w = _esprit(y, self.step, self.band[0], self.band[1], self.max_tones, self.lags, self.rank_tol)
+        w = _esprit(y, self.step, self.band[0], self.band[1], self.max_tones, self.lags, self.rank_tol,
+                    EDGE_SHARE)
         if not w.size:
             return None
         c, res = _fit(tt - t, y, w, self.trend)
@@ -470,7 +502,8 @@ class PredictiveLaw:
         TypeError
             If d or estimate is not a Sinusoids or Piecewise.
         ValueError
-            If horizon or x0 is out of range.
+            If horizon or x0 is out of range, or estimate is a Piecewise whose breaks do not
+            cover the part of [0, horizon] where d acts.
         EnergyOverflowError
             If the energy exceeds the float range in the units of d.
 
@@ -498,6 +531,24 @@ class PredictiveLaw:
         PredictiveRun
         """
         return self._run(d, horizon, None, x0, known=True)
+
+
+def _span(d, H):
+    """Where in [0, H] the signal d may be nonzero (a Piecewise is zero outside its breaks)."""
+    if isinstance(d, Sinusoids):
+        return 0.0, H
+    return min(max(float(d.breaks[0]), 0.0), H), max(min(float(d.breaks[-1]), H), 0.0)
+
+
+def _check_covers(estimate, d, H):
+    """Refuse an estimate that is zero (its breaks' end) where d is not."""
+    a, b = _span(d, H)
+    e0, e1 = _span(estimate, H)
+    if b > a and (e0 > a or e1 < b):
+        e0, e1 = float(estimate.breaks[0]), float(estimate.breaks[-1])
+        raise ValueError(f"estimate must cover [{a:g}, {b:g}] s, where d acts within the horizon {H:g} s, "
+                         f"but its breaks span [{e0:g}, {e1:g}] s (a Piecewise is zero outside them, so the "
+                         "law would read ŵ = 0 there): give an estimate over the whole horizon")
 
 
 def _lowpass(d, nyquist):

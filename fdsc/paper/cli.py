@@ -71,6 +71,14 @@ def _writable_file(path, prog, flag="--out"):
         raise SystemExit(f"{prog}: {flag} {path}: cannot write its folder {path.parent} ({why})")
 
 
+def _path(text):
+    """An argparse type: a non-empty path (an empty one would mean the current folder)."""
+    if not text:
+        raise argparse.ArgumentTypeError("must name a path, but found an empty string (which would mean "
+                                         "the current folder)")
+    return Path(text)
+
+
 def reproduce(argv=None):
     """``reproduce --out DIR``: recompute every artefact and write ``DIR/reproduction.json``.
 
@@ -89,7 +97,7 @@ def reproduce(argv=None):
     """
     parser = argparse.ArgumentParser(prog="python -m fdsc reproduce",
                                      description="recompute every artefact and write reproduction.json")
-    parser.add_argument("--out", required=True, type=Path, help="output folder (created if missing)")
+    parser.add_argument("--out", required=True, type=_path, help="output folder (created if missing)")
     parser.add_argument("--jobs", type=int, default=None,
                         help=f"processes computing the chapters (default: ${JOBS_ENV}, else the "
                              "number of CPUs, at most 4)")
@@ -138,8 +146,8 @@ def cold_times_command(argv=None):
     root = Path(__file__).resolve().parents[2]
     parser = argparse.ArgumentParser(prog="python -m fdsc cold-times",
                                      description="execute every chapter alone, cold, and time it")
-    parser.add_argument("--book", type=Path, default=root / "book", help="the book's folder")
-    parser.add_argument("--out", type=Path, default=root / COLD_TIMES_FILE,
+    parser.add_argument("--book", type=_path, default=root / "book", help="the book's folder")
+    parser.add_argument("--out", type=_path, default=root / COLD_TIMES_FILE,
                         help="the JSON file to write")
     args = parser.parse_args(sys.argv[2:] if argv is None else argv)
     if not (args.book / "_toc.yml").is_file():
@@ -182,7 +190,7 @@ def disturbance_law_command(argv=None):
     parser.add_argument("--scheduler", default=None,
                         help="address of a Dask scheduler (instead of processes)")
     root = Path(__file__).resolve().parents[2]
-    parser.add_argument("--out", type=Path, default=Path("out") / FULL_FILE.name,
+    parser.add_argument("--out", type=_path, default=Path("out") / FULL_FILE.name,
                         help="the JSON file to write (default out/disturbance_law_full.json; the book "
                              "reads the stored study, which only --replace overwrites)")
     parser.add_argument("--replace", action="store_true",
@@ -199,9 +207,11 @@ def disturbance_law_command(argv=None):
         parser.error(f"--workers must be at least 1, but found {args.workers}")
     if args.replace:
         args.out = root / FULL_FILE
-    if (args.robustness_only or args.measured_only) and not args.out.is_file():
+    extend = args.robustness_only or args.measured_only
+    if extend and not args.out.is_file():
         parser.error(f"--robustness-only and --measured-only need the full study in {args.out}, "
                      "which does not exist")
+    stored = _stored_study(args.out, parser) if extend else None
     _writable_file(args.out, parser.prog, "--replace" if args.replace else "--out")
     if args.replace:
         _writable_file(Path(__file__).resolve().parent / "data" / CHOICE_FILE, parser.prog, "--replace")
@@ -210,7 +220,7 @@ def disturbance_law_command(argv=None):
     def run(executor):
         if not (args.robustness_only or args.measured_only):
             return full_study(args.n, executor=executor, out=args.out)
-        result = json.loads(args.out.read_text())
+        result = stored
         if args.robustness_only:
             result["robustness"] = robustness(result, executor=executor)
         result["measured"] = measured_robustness(result, executor=executor)
@@ -260,6 +270,24 @@ def disturbance_law_command(argv=None):
               f"of {r['draws_test']} test draws")
     print(f"wrote {args.out} in {time.perf_counter() - start:.0f} s")
     return 0
+
+
+def _stored_study(path, parser):
+    """The full study in ``path`` that ``--robustness-only`` or ``--measured-only`` extends, read and
+    checked (both examples' stored controllers rebuilt) before computing; a file that is not one
+    (truncated, binary, JSON of something else, a damaged controller) exits with a one-line message
+    naming it."""
+    from fdsc.paper.pays.stored_study import load_full, stored_fixed_set
+
+    try:
+        full = load_full(path)
+        for example in ("aircraft", "generic"):
+            stored_fixed_set(full, example)
+    except (ValueError, KeyError, TypeError) as exc:
+        why = exc.args[0] if isinstance(exc, KeyError) and exc.args else str(exc)
+        parser.error(f"--out {path}: not a full study that --robustness-only or --measured-only can extend "
+                     f"({why})")
+    return full
 
 
 def main(argv=None):

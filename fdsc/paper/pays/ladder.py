@@ -345,15 +345,39 @@ def recheck_ladder(full: dict, example: str, k: int = N_RECHECK) -> dict:
         The stored full study (:func:`fdsc.paper.pays.disturbance_law.load_full`).
     example : {"aircraft", "generic"}
     k : int, optional
+        Test draws recomputed, between 1 and the stored ladder's test draws.
 
     Returns
     -------
     dict
         ``{"draws", "rungs", "largest_difference"}`` (the largest relative difference of a ratio).
-    """
-    from fdsc.paper.pays.stored_study import stored_fixed_set
 
-    lad = full[example]["ladder"]
+    Raises
+    ------
+    TypeError
+        If ``full`` is not a dict (e.g. None: :func:`load_full` outside a checkout).
+    ValueError
+        If ``example`` is not one of the two examples, or ``k`` is not a count between 1 and the
+        stored test draws (as :func:`fdsc.paper.pays.disturbance_law_full.recheck_stored`).
+    KeyError
+        Naming the key the stored study lacks (the example, its ``ladder``, or what the ladder
+        keeps).
+    """
+    from fdsc._validation import as_count
+    from fdsc.paper.pays.stored_study import _stored_example, stored_fixed_set
+
+    r = _stored_example(full, example)
+    if "ladder" not in r:
+        raise KeyError(f"full[{example!r}]: the stored study has no key 'ladder' (a study computed before "
+                       "the ladder: rerun python -m fdsc disturbance-law)")
+    lad = r["ladder"]
+    for key in ("test_indices", "settings", "ratios"):
+        if key not in lad:
+            raise KeyError(f"full[{example!r}]['ladder']: the stored study has no key {key!r}")
+    k = as_count("k", k, 1)
+    if k > len(lad["test_indices"]):
+        raise ValueError(f"k must be at most the {len(lad['test_indices'])} stored test draws of the ladder, "
+                         f"but found {k}")
     fs = stored_fixed_set(full, example)
     worst = 0.0
     for j, index in enumerate(lad["test_indices"][:k]):

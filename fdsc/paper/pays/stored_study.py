@@ -6,11 +6,12 @@ study, the ladder and its variants).
 from __future__ import annotations
 
 import json
+import os
 from pathlib import Path
 
 import numpy as np
 
-from fdsc._validation import as_choice
+from fdsc._validation import as_choice, as_finite_real, as_matrix
 from fdsc.paper.pays.fixed_designs import FixedSet
 
 __all__ = ["FULL_FILE", "map_draws", "submit_draws", "load_full", "stored_fixed_set"]
@@ -97,6 +98,10 @@ def _stored_example(full, example) -> dict:
     return r
 
 
+#: The stored peaks and sizes of a fixed controller (:attr:`FixedSet.info`).
+_INFO = ("lf", "hf", "hinf", "states", "size", "reads_estimate", "slowest")
+
+
 def stored_fixed_set(full: dict, example: str) -> FixedSet:
     """The fixed controllers of a stored full study, rebuilt from their stored matrices (to
     recompute stored draws without redoing the designs).
@@ -117,35 +122,69 @@ def stored_fixed_set(full: dict, example: str) -> FixedSet:
     TypeError
         If ``full`` is not a dict (e.g. None: :func:`load_full` outside a checkout).
     ValueError
-        If ``example`` is not one of the two examples.
+        If ``example`` is not one of the two examples, or a stored controller's matrices or
+        score are not finite numbers of consistent shapes (naming the controller).
     KeyError
-        Naming the key the stored study lacks (the example, or ``fixed_in_advance``'s controller).
+        Naming the key the stored study lacks (the example, ``fixed_in_advance``'s controller,
+        or a controller's matrix, family, score or peaks).
     """
+    r = _stored_example(full, example)
+    fc, pairs_stored = r["fixed_controllers"], r["pairs"]
+    where = f"full[{example!r}]"
+    for key, value in (("fixed_controllers", fc), ("pairs", pairs_stored)):
+        if not isinstance(value, dict) or (key == "fixed_controllers" and not value):
+            raise ValueError(f"{where}[{key!r}] must be a non-empty object of controllers, but found "
+                             f"{type(value).__name__}" + (" (empty)" if isinstance(value, dict) else ""))
+    names = tuple(fc)
+    info, family, score, ctrls = {}, {}, {}, {}
+    for k, v in fc.items():
+        at = f"{where}['fixed_controllers'][{k!r}]"
+        if not isinstance(v, dict):
+            raise ValueError(f"{at} must be an object, but found {type(v).__name__}")
+        for key in ("family", "train_score", "matrices", *_INFO):
+            if key not in v:
+                raise KeyError(f"{at}: the stored study has no key {key!r}")
+        info[k] = {x: v[x] for x in _INFO}
+        family[k] = v["family"]
+        score[k] = as_finite_real(f"{at}['train_score']", v["train_score"])
+        ctrls[k] = _stored_controller(v["matrices"], k, f"{at}['matrices']")
+    pairs = {}
+    for f, p in pairs_stored.items():
+        at = f"{where}['pairs'][{f!r}]"
+        if not isinstance(p, list) or len(p) != 2:
+            raise ValueError(f"{at} must be a pair of controllers (LF, HF), but found {p!r:.80}")
+        pairs[f] = tuple(_stored_controller(m, f"{f} for {t} segments", f"{at}[{j}]")
+                         for j, (m, t) in enumerate(zip(p, ("LF", "HF"), strict=True)))
+    x_only = [k for k in names if not ctrls[k].reads_estimate]
+    if not x_only:
+        raise ValueError(f"{where}['fixed_controllers'] has no controller that reads x alone (the best "
+                         "fixed controller (x) is chosen among them)")
+    chosen_x = min(x_only, key=lambda k: (score[k], names.index(k)))
+    return FixedSet(example, full["n"], full["seed"], 0, names, ctrls, family, info, score,
+                    r["fixed_in_advance"], [], {}, pairs, {}, {}, None, chosen_x)
+
+
+def _stored_controller(m, name, at):
+    """The controller of stored matrices ``m``; a missing matrix, a non-numeric or non-finite
+    entry or inconsistent shapes are refused naming ``at`` (where in the study it lies)."""
     import fdsc
 
-    r = _stored_example(full, example)
-
-    def ctrl(m, name):
+    if not isinstance(m, dict):
+        raise ValueError(f"{at} must be an object of matrices, but found {type(m).__name__}")
+    for key in ("A", "B", "C", "D", *(("F",) if "E" in m else ()), *(("E",) if "F" in m else ())):
+        if key not in m:
+            raise KeyError(f"{at}: the stored study has no matrix {key!r}")
+    try:
+        D = as_matrix("D", m["D"])
+        outputs, inputs = D.shape
+        k = len(m["A"])                             # the controller's states (none: A = [])
+        A = as_matrix("A", m["A"], (k, k)) if k else np.zeros((0, 0))
+        B = as_matrix("B", m["B"], (k, inputs)) if k else np.zeros((0, inputs))
+        C = as_matrix("C", m["C"], (outputs, k)) if k else np.zeros((outputs, 0))
         E, F = (m["E"], m["F"]) if "E" in m else (None, None)
-        A = np.asarray(m["A"], dtype=float).reshape(len(m["A"]), -1) if m["A"] else np.zeros((0, 0))
-        n = len(m["D"][0])
-        B = np.asarray(m["B"], dtype=float).reshape(A.shape[0], -1) if A.size else np.zeros((0, n))
-        C = np.asarray(m["C"], dtype=float).reshape(len(m["D"]), -1)
-        return fdsc.Controller(A, B, C, np.asarray(m["D"], dtype=float), E=E, F=F, name=name)
-
-    fc = r["fixed_controllers"]
-    names = tuple(fc)
-    info = {k: {x: v[x] for x in ("lf", "hf", "hinf", "states", "size", "reads_estimate", "slowest")}
-            for k, v in fc.items()}
-    pairs = {f: tuple(ctrl(m, f"{f} for {t} segments") for m, t in zip(p, ("LF", "HF"), strict=True))
-             for f, p in r["pairs"].items()}
-    ctrls = {k: ctrl(v["matrices"], k) for k, v in fc.items()}
-    x_only = [k for k in names if not ctrls[k].reads_estimate]
-    chosen_x = min(x_only, key=lambda k: (fc[k]["train_score"], names.index(k)))
-    return FixedSet(example, full["n"], full["seed"], 0, names, ctrls,
-                    {k: v["family"] for k, v in fc.items()}, info,
-                    {k: v["train_score"] for k, v in fc.items()}, r["fixed_in_advance"], [], {}, pairs,
-                    {}, {}, None, chosen_x)
+        return fdsc.Controller(A, B, C, D, E=E, F=F, name=name)
+    except (ValueError, TypeError) as exc:
+        raise ValueError(f"{at}: the stored matrices of {name!r} do not make a controller ({exc})") from None
 
 
 def load_full(path=None):
@@ -165,21 +204,34 @@ def load_full(path=None):
 
     Raises
     ------
+    TypeError
+        If ``path`` is not a str or os.PathLike.
     FileNotFoundError
         If an explicit ``path`` is not a file, naming it.
     ValueError
-        If the file is not valid JSON (e.g. truncated), naming it and where the JSON breaks.
+        If the file is not UTF-8 text (a binary file), not valid JSON (e.g. truncated), naming
+        it and where it breaks, or JSON that is not an object (a study is one).
     """
     if path is None:
         path = Path(__file__).resolve().parents[3] / FULL_FILE
         if not path.is_file():
             return None
+    if not isinstance(path, str | os.PathLike):
+        raise TypeError(f"path must be the stored study's file (a str or os.PathLike), but found "
+                        f"{type(path).__name__}")
     path = Path(path)
     if not path.is_file():
         raise FileNotFoundError(f"path: the stored study {path} does not exist (or is not a file)")
     try:
-        return json.loads(path.read_text(encoding="utf-8"))
+        full = json.loads(path.read_text(encoding="utf-8"))
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"path: the stored study {path} is not UTF-8 text (byte {exc.start} cannot be "
+                         "decoded): a binary or damaged file? rerun python -m fdsc disturbance-law") from None
     except json.JSONDecodeError as exc:
         raise ValueError(f"path: the stored study {path} is not valid JSON ({exc.msg} at line "
                          f"{exc.lineno}, column {exc.colno}): truncated or damaged? rerun python -m "
                          "fdsc disturbance-law") from None
+    if not isinstance(full, dict):
+        raise ValueError(f"path: {path} holds JSON but not a stored study (a {type(full).__name__}, where "
+                         "an object with 'n', 'seed', 'aircraft' and 'generic' is expected)")
+    return full
