@@ -27,6 +27,8 @@ _EXPORTS = {
     "controller": ("Controller", "as_controller", "switched_loops"),
     "weighted": ("WeightedDesign", "DynamicFront", "band_weight", "weighted_hinf", "dynamic_front"),
     "h2": ("shaping_filter", "fit_shaping_filter", "h2_controller"),
+    "class_spectrum": ("SegmentClass",),
+    "optimal_lti": ("OptimalLTI", "expected_power", "feedforward_basis", "optimal_lti", "wiener_power"),
     "tuning": ("TuneResult", "loop_energy", "tune_controller"),
     "noncausal": ("LQData", "NoncausalLimit", "lq_data", "noncausal_limit", "tone_limit"),
     "predictive": ("PredictiveLaw", "PredictiveRun", "ToneEstimate", "identify_tones"),
@@ -39,7 +41,7 @@ _EXPORTS = {
     "exceptions": ("BandError", "DimensionError", "EnergyOverflowError", "EnergyUnderflowWarning",
                    "FdscError", "InfeasibleError", "IterationLimitError", "MemoryLimitError",
                    "SingularFrequencyError", "SolverError", "UnstableError", "UnstableRunWarning",
-                   "VerificationError"),
+                   "VerificationError", "ResolutionWarning"),
     "frequency": ("BandPeak", "band_peak", "freqresp", "sigma_max", "steady_state_gain", "steady_state_gains",
                   "steady_state_gains"),
     "lmi": ("GKYPResult", "gkyp_certify", "gkyp_gamma"),
@@ -105,6 +107,7 @@ sys.modules[__name__].__class__ = _Package
 
 if TYPE_CHECKING:  # what the lazy names are, for type checkers and editors
     from .bands import PHI, Band, band_from_spec
+    from .class_spectrum import SegmentClass
     from .controller import Controller, as_controller, switched_loops
     from .decisions import SupervisedRun
     from .design import FDSC
@@ -138,6 +141,7 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers and editors
         InfeasibleError,
         IterationLimitError,
         MemoryLimitError,
+        ResolutionWarning,
         SingularFrequencyError,
         SolverError,
         UnstableError,
@@ -165,6 +169,7 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers and editors
         synthesize_multiband,
     )
     from .noncausal import LQData, NoncausalLimit, lq_data, noncausal_limit, tone_limit
+    from .optimal_lti import OptimalLTI, expected_power, feedforward_basis, optimal_lti, wiener_power
     from .plant import LTISystem, Plant, as_plant, as_system
     from .predictive import PredictiveLaw, PredictiveRun, ToneEstimate, identify_tones
     from .prepared import Prepared, shift_signal
@@ -208,8 +213,10 @@ __all__ = [
     "WeightedDesign", "DynamicFront", "band_weight", "weighted_hinf", "dynamic_front",
     "shaping_filter", "fit_shaping_filter", "h2_controller", "TuneResult", "loop_energy",
     "tune_controller",
-    # what any controller can do on a draw, and a law that predicts the disturbance
-    "LQData", "lq_data", "NoncausalLimit", "noncausal_limit", "tone_limit", "ToneEstimate",
+    # what any controller can do on a draw, the optimal LTI controller of a class, and a law that
+    # predicts the disturbance
+    "LQData", "lq_data", "NoncausalLimit", "noncausal_limit", "tone_limit", "SegmentClass",
+    "OptimalLTI", "optimal_lti", "expected_power", "wiener_power", "feedforward_basis", "ToneEstimate",
     "identify_tones", "PredictiveRun", "PredictiveLaw",
     # a switching law on the disturbance estimate
     "Supervisor", "Prepared", "SupervisedRun", "supervise", "LAWS", "band_filter", "lqr_gain",
@@ -239,4 +246,5 @@ __all__ = [
     "FdscError", "BandError", "DimensionError", "SolverError", "InfeasibleError",
     "VerificationError", "IterationLimitError", "UnstableError", "SingularFrequencyError",
     "MemoryLimitError", "EnergyOverflowError", "EnergyUnderflowWarning", "UnstableRunWarning",
+    "ResolutionWarning",
 ]

@@ -32,7 +32,7 @@ def _gauss_reference(run, modes, d, dt, nodes=8):
         X = [np.linalg.solve(1j * om * np.eye(n) - A, B * a)
              for om, a in zip(d.frequencies, d.amplitudes, strict=True)]
 
-        def xp(tt):
+        def xp(tt, X=X):
             return sum(np.imag(np.outer(np.exp(1j * (om * tt + ph)), Xj))
                        for om, ph, Xj in zip(d.frequencies, d.phases, X, strict=True))
 

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
+from fdsc import LTISystem, Sinusoids, simulate, time_grid
 from fdsc.paper.reproduced.theorem1 import (
     AutonomousRuns,
     LyapunovJumps,
@@ -17,7 +18,6 @@ from fdsc.paper.reproduced.theorem1 import (
     theorem1_table,
     window_ratios,
 )
-from fdsc import LTISystem, Sinusoids, simulate, time_grid
 from fdsc.paper.shared.data import our_q
 from fdsc.paper.shared.results import RecordPart
 from fdsc.paper.shared.verdict import VERDICTS
