@@ -258,12 +258,20 @@ class PredictiveRun:
         How many times the tones were identified.
     mean_tones : float
         Tones per identification, on average.
+    output_energy : (p,) ndarray
+        ∫₀ᴴ z_r² dt per output r (they sum to ``energy``): the energy of u where z holds rows
+        of ``D2 u`` alone.
+    pieces : (k, 3) ndarray
+        ``[t0, t1, ∫ ‖z‖²]`` of the pieces the run is integrated on, between the law's updates
+        and the breaks of d and ŵ (their energies sum to ``energy``).
     """
 
     energy: float
     horizon: float
     identifications: int
     mean_tones: float
+    output_energy: np.ndarray = None
+    pieces: np.ndarray = None
 
 
 class PredictiveLaw:
@@ -422,6 +430,7 @@ class PredictiveLaw:
         lo_w = np.array([p[0] for p in pw])
         model = None                        # (time, ω, c, u per unit)
         energy, n_id, n_tones = 0.0, 0, 0
+        per_output, rows = np.zeros(plant.C.shape[0]), []
         B1, B2, D1, D2 = plant.B1[:, 0], plant.B2, plant.D1[:, 0], plant.D2
         for t0, t1 in zip(edges[:-1], edges[1:], strict=True):
             k = round(t0 / self.update)
@@ -455,11 +464,18 @@ class PredictiveLaw:
             s = np.concatenate(s)
             e, an, gz, x = self._modal.piece(x, s, np.zeros(s.size, dtype=bool), np.vstack(b),
                                              np.vstack(dz), L)
-            energy += float(np.trace(Modal.gram(e, an, gz, L)))
+            diag = np.diag(Modal.gram(e, an, gz, L))
+            energy += float(np.sum(diag))
+            per_output += diag
+            rows.append((t0, t1, float(np.sum(diag))))
         if not math.isfinite(energy):
             raise EnergyOverflowError("PredictiveLaw: the energy exceeds the float range (about 1.8e308)")
         energy = _unscale(energy, e_scale, where="PredictiveLaw: ")
-        return PredictiveRun(energy, H, n_id, n_tones / n_id if n_id else 0.0)
+        with np.errstate(over="ignore"):
+            per_output = np.ldexp(per_output, 2 * e_scale)
+            pieces_ = np.array(rows, dtype=float).reshape(-1, 3)
+            pieces_[:, 2] = np.ldexp(pieces_[:, 2], 2 * e_scale)
+        return PredictiveRun(energy, H, n_id, n_tones / n_id if n_id else 0.0, per_output, pieces_)
 
     def _identify(self, sampled, t):
         """The model at time t from the last window of samples (None if none is usable)."""

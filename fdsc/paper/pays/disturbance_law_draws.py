@@ -17,7 +17,8 @@ from fdsc.paper.reproduced.paper_cases import aircraft_example
 from fdsc.paper.shared.cache import cached
 
 __all__ = ["SEED", "LAMBDAS", "HYSTERESES", "DECIDE_EVERY", "RESTART", "NOISE_SHARE", "NOISE_TONES",
-           "IDEAL_PAIR", "Draw", "draw", "lqr", "certificate", "seeded_draw"]
+           "IDEAL_PAIR", "MIN_LENGTH", "MEAN_EXTRA", "Draw", "draw", "lqr", "certificate", "seeded_draw",
+           "segment_class"]
 
 SEED = 32
 #: The tuning grid of the laws (on the training half): forgetting λ (1/s) and hysteresis h.
@@ -26,6 +27,8 @@ LAMBDAS, HYSTERESES = (0.05, 0.2, 1.0), (0.1, 0.3, 1.0)
 DECIDE_EVERY, RESTART = 0.1, 20.0
 #: Probability that a segment is band-limited noise, and its tones per band.
 NOISE_SHARE, NOISE_TONES = 0.25, 6
+#: A segment's length: this many seconds plus an exponential time of mean :data:`MEAN_EXTRA`.
+MIN_LENGTH, MEAN_EXTRA = 20.0, 80.0
 #: The fixed gains the ideal segment law holds on LF- and HF-dominated pieces.
 IDEAL_PAIR = ("PassC-LF", "PassC-HF")
 
@@ -96,7 +99,7 @@ def draw(example, rng: np.random.Generator, *, length_scale: float = 1.0, alpha=
     (True, [1.0, 1.0])
     """
     k = int(rng.integers(6, 11))
-    lengths = np.round(length_scale * (20.0 + rng.exponential(80.0, k)) * 100.0) / 100.0
+    lengths = np.round(length_scale * (MIN_LENGTH + rng.exponential(MEAN_EXTRA, k)) * 100.0) / 100.0
     parts, dom, noise = [], [], []
     for _ in range(k):
         lf = bool(rng.random() < 0.5)
@@ -116,6 +119,29 @@ def draw(example, rng: np.random.Generator, *, length_scale: float = 1.0, alpha=
     breaks = np.round(np.r_[0.0, np.cumsum(lengths)] * 100.0) / 100.0
     horizon = math.ceil(breaks[-1] / DECIDE_EVERY - 1e-9) * DECIDE_EVERY
     return Draw(fdsc.Piecewise(breaks, parts), round(horizon, 6), tuple(dom), tuple(noise))
+
+
+def segment_class(example: str, length_scale: float = 1.0) -> fdsc.SegmentClass:
+    """The class of :func:`draw` as its second-order statistics see it (:class:`fdsc.SegmentClass`).
+
+    A segment's tones are log-uniform in the example's LF and HF tone ranges, each band with a
+    mean half of the power (LF-dominated segments, with a share α of it, and HF-dominated ones,
+    with 1 − α, are equally likely), and the tones of a noise segment have the same law of
+    frequency and the same expected share each; a segment's power is 1 and its length
+    ``length_scale · (20 + Exp(80))`` s.
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+    length_scale : float, optional
+
+    Returns
+    -------
+    fdsc.SegmentClass
+    """
+    ex = _example(example)
+    return fdsc.SegmentClass([ex.lf_tones, ex.hf_tones], [0.5, 0.5], power=1.0,
+                             min_length=length_scale * MIN_LENGTH, mean_extra=length_scale * MEAN_EXTRA)
 
 
 def seeded_draw(example: str, index: int, seed: int = SEED) -> tuple:

@@ -6,6 +6,7 @@ measurements, the stored file and the fixed controllers rebuilt from it.
 from __future__ import annotations
 
 import json
+import math
 import time
 from pathlib import Path
 
@@ -74,16 +75,17 @@ def full_study(n: int = N_FULL, *, seed: int = SEED, executor=None, out=None) ->
     Returns
     -------
     dict
-        ``commit``, ``fingerprint``, ``n``, ``seed``, and per example the summary
+        ``commit``, ``fingerprint`` (:func:`fdsc.paper.shared.cache.study_fingerprint`: the
+        sources the study imports), ``n``, ``seed``, and per example the summary
         (:meth:`Study.summary`) with every test draw's ratios for every fixed controller, FDSC
         variant, law family and reference, and the fixed controllers' matrices; ``phase_seconds``
         (the wall time of each phase, in order).
     """
-    from fdsc.paper.shared.cache import source_fingerprint
+    from fdsc.paper.shared.cache import study_fingerprint
     from fdsc.paper.shared.environment import build_commit
 
     n = as_count("n", n, N_MIN)
-    result = {"commit": build_commit(), "fingerprint": source_fingerprint(), "n": n, "seed": seed}
+    result = {"commit": build_commit(), "fingerprint": study_fingerprint(), "n": n, "seed": seed}
     clock = _Clock()
     # the two examples' fixed controllers are tuned at once (each tuning is serial, and the
     # longest single task of the study)
@@ -116,6 +118,10 @@ def full_study(n: int = N_FULL, *, seed: int = SEED, executor=None, out=None) ->
                                       "matrices": _controller_record(fs.controllers[k])} for k in fs.names},
             "pairs": {f: [_controller_record(c) for c in pair] for f, pair in fs.pairs.items()},
             "fixed_in_advance_x": fs.chosen_x,
+            "best_found": fs.chosen_found,
+            "optimal_lti": _optimal_record(fs),
+            "front_checks": fs.front_checks,
+            "design_checks": fs.design_checks,
             "ladder": ladder_study(example, fs, st, seed, executor),
         }
         clock(f"{example}: ladder")
@@ -150,6 +156,9 @@ def ladder_study(example: str, fs: FixedSet, st, seed: int, executor=None) -> di
     """
     from fdsc.paper.pays.ladder import (
         N_CHOOSE,
+        N_PEAK,
+        PEAK_DT,
+        SINCE_BREAK,
         choose_settings,
         direct_dwell,
         ladder_draw,
@@ -171,8 +180,13 @@ def ladder_study(example: str, fs: FixedSet, st, seed: int, executor=None) -> di
     settings = choose_settings(example, fs, seed, n=min(N_CHOOSE, len(st.train)), executor=executor)
     rows = map_draws(ladder_draw, [(example, i, seed, fs, settings) for i in idx], executor)
     ref = np.array([r["best fixed (x, ŵ)"] for r in rows])
-    energies = {k: [r[k] for r in rows] for k in rows[0] if k != "index"}
+    energies = {k: [r[k] for r in rows] for k in rows[0] if k not in ("index", "control", "excess")}
     ratios = {k: (np.asarray(v) / ref).tolist() for k, v in energies.items()}
+    control = {k: [r["control"][k] for r in rows] for k in rows[0]["control"]}
+    excess = {key: [r["excess"][key] for r in rows] for key in ("excess", "reference", "seconds")}
+    fixed_names = {"best fixed (x, ŵ)": fs.chosen, "best found (x, ŵ)": fs.chosen_found,
+                   "best fixed (x)": fs.chosen_x}
+    peaks = map_draws(_fixed_peaks, [(example, i, seed, fs, fixed_names) for i in idx[:N_PEAK]], executor)
     ratios["gain switching"] = [r["runs"][st.law][0] / r["fixed"][fs.chosen] for r in st.test]
     ratios["FDSC"] = [r["fdsc"]["FDSC"][0] / r["fixed"][fs.chosen] for r in st.test]
     m = min(N_ROBUST, len(idx))
@@ -184,10 +198,36 @@ def ladder_study(example: str, fs: FixedSet, st, seed: int, executor=None) -> di
         noisy[str(float(snr))] = {k: [r[k] for r in res] for k in res[0]}
     noisy["direct_dwell"] = tau
     return {"settings": settings, "test_indices": idx, "energies": energies, "ratios": ratios,
-            "summary": summarize(ratios), "noisy": noisy, "noisy_draws": m,
+            "summary": summarize(ratios), "control": control, "fixed_names": fixed_names,
+            "control_peak": {k: [p[k] for p in peaks] for k in fixed_names}, "peak_draws": len(peaks),
+            "peak_dt": PEAK_DT,
+            "excess_by_time": {"edges": [None if math.isinf(e) else e for e in SINCE_BREAK], **excess},
+            "noisy": noisy, "noisy_draws": m,
             "exact_on_noisy_draws": {k: ratios[k][:m] for k in ("predictive", "scheduled")},
             "variants": variant_study(example, fs, settings, seed, executor, n_tune=n_tune,
                                       n_test=min(N_TEST_VARIANT, len(idx)), tuned=tuned)}
+
+
+def _fixed_peaks(example, index, seed, fs, names):
+    """The peak control effort of the ladder's fixed rungs on one draw (:func:`control_peak`)."""
+    from fdsc.paper.pays.disturbance_law_draws import seeded_draw
+    from fdsc.paper.pays.ladder import control_peak
+
+    ex, dr = seeded_draw(example, index, seed)
+    return {rung: control_peak(ex.plant, fs.controllers[name], dr.d, dr.horizon)
+            for rung, name in names.items()}
+
+
+def _optimal_record(fs) -> dict:
+    """What the study keeps of the optimal LTI controller's design (:func:`fdsc.optimal_lti`)."""
+    from fdsc.paper.pays.fixed_designs import OPTIMAL_LTI
+
+    opt = fs.tuning.get(OPTIMAL_LTI)
+    if opt is None:
+        return {}
+    return {"power": opt.power, "full_power": opt.full_power, "wiener": opt.wiener,
+            "densities": opt.densities.tolist(), "powers": opt.powers.tolist(),
+            "converged": bool(opt.converged), "change": opt.change, "states": opt.controller.n_states}
 
 
 def _stored_law(full, example):

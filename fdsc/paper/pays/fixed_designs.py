@@ -44,14 +44,14 @@ from dataclasses import dataclass, field
 import numpy as np
 
 import fdsc
-from fdsc.paper.pays.disturbance_law_draws import RESTART, _example, seeded_draw
+from fdsc.paper.pays.disturbance_law_draws import RESTART, _example, seeded_draw, segment_class
 from fdsc.paper.shared.cache import cached
 from fdsc.paper.shared.comparators import comparators
 
 __all__ = ["N_TUNE", "CAP_FACTOR", "FRONT_POINTS", "DYN_RATIOS", "U_PENALTY", "TUNE_MAXITER",
            "RECORD_MAXITER", "FF_MAXITER", "FF_ROUNDS", "RECORD_ROUNDS", "FAMILIES", "FixedSet", "fixed_set",
            "tuning_draws", "static_front",
-           "law_front_gains", "ff_poles"]
+           "law_front_gains", "ff_poles", "OPTIMAL_LTI", "best_found"]
 
 #: Tuning draws (the first training draws) the tuned designs and the shaping filters see.
 N_TUNE = 30
@@ -68,7 +68,10 @@ TUNE_MAXITER, RECORD_MAXITER = 1500, 250
 #: Iterations per start of the front's search and of its dominance check.
 FRONT_MAXITER, CHECK_MAXITER = 200, 300
 #: The families, in the order the book lists them.
-FAMILIES = ("comparator set", "static front", "LQR", "dynamic front", "H2", "tuned", "tuned (x, ŵ)")
+FAMILIES = ("comparator set", "static front", "LQR", "dynamic front", "H2", "tuned", "tuned (x, ŵ)",
+            "optimal LTI")
+#: The name of the optimal LTI controller of the class (reading x and ŵ) in the fixed set.
+OPTIMAL_LTI = "optimal LTI (x, ŵ)"
 #: Nelder–Mead iterations per round of the feedforward designs (a round also sets the feedforward
 #: gains exactly; the rounds end when one gains less than 1e-9).
 FF_MAXITER = 300
@@ -116,8 +119,10 @@ class FixedSet:
     family : dict
         ``{name: family}``.
     info : dict
-        ``{name: {"lf", "hf", "hinf", "states", "size", "reads_estimate"}}``: band peaks, H∞
-        norm, the controller's states, its largest gain from x to u.
+        ``{name: {"lf", "hf", "hinf", "states", "size", "reads_estimate", "slowest",
+        "expected_power"}}``: band peaks, H∞ norm, the controller's states, its largest gain from
+        x to u, the slowest closed-loop time constant (s) and the mean output power in steady
+        state under the class's mean spectrum (:func:`fdsc.expected_power`).
     train_score : dict
         ``{name: mean log energy over the training half}``.
     chosen : str
@@ -137,6 +142,9 @@ class FixedSet:
         The class's shaping filter.
     chosen_x : str
         The best fixed controller that reads x alone (least training score among them).
+    chosen_found : str
+        The best fixed controller reading x and ŵ found by the designs and the local searches,
+        the optimal LTI controller of the class left out (:func:`best_found`).
     """
 
     example: str
@@ -156,6 +164,7 @@ class FixedSet:
     tuning: dict = field(repr=False)
     shaping: fdsc.LTISystem = field(repr=False)
     chosen_x: str = ""
+    chosen_found: str = ""
 
     def ranking(self) -> list:
         """The names by training score, best first."""
@@ -372,6 +381,12 @@ def fixed_set(example: str, n: int, seed: int) -> FixedSet:
                                structure="held", feedforward=wide, name="LQR + ŵ filter")
     tuning["LQR + ŵ filter"] = res
     add("LQR + ŵ filter", res.controller, "tuned (x, ŵ)")
+    # the optimal LTI controller of the class, reading x and ŵ: the Wiener–Hopf optimum for the
+    # class's mean spectrum (no draws), to which every other fixed controller is compared
+    cls = segment_class(example)
+    opt = fdsc.optimal_lti(plant, cls, name=OPTIMAL_LTI)
+    tuning[OPTIMAL_LTI] = opt
+    add(OPTIMAL_LTI, opt.controller, "optimal LTI")
     # the pairs for the value of switching: each design made for one type of segment
     pairs, pair_scores = {}, {}
     pairs["LQR + ŵ filter"] = tuple(
@@ -408,7 +423,8 @@ def fixed_set(example: str, n: int, seed: int) -> FixedSet:
                     "hf": fdsc.band_peak(loop, ex.bands["HF"]).gamma if stable else math.inf,
                     "hinf": fdsc.band_peak(loop, fdsc.Band.entire()).gamma if stable else math.inf,
                     "states": c.n_states, "size": c.size(), "reads_estimate": c.reads_estimate,
-                    "slowest": (1.0 / float(np.min(np.abs(loop.poles().real)))) if stable else math.inf}
+                    "slowest": (1.0 / float(np.min(np.abs(loop.poles().real)))) if stable else math.inf,
+                    "expected_power": fdsc.expected_power(loop, cls) if stable else math.inf}
         score[nm] = float(np.mean(np.log(energies(loop)))) if stable else math.inf
     for fam_name, pair in pairs.items():
         pair_scores[fam_name] = [float(np.mean(np.log(energies(c.closed_loop(plant))))) for c in pair]
@@ -416,7 +432,26 @@ def fixed_set(example: str, n: int, seed: int) -> FixedSet:
     chosen_x = min((k for k in names if not ctrls[k].reads_estimate),
                    key=lambda k: (score[k], names.index(k)))
     return FixedSet(example, n, seed, len(tune), tuple(names), ctrls, fam, info, score, chosen, checks,
-                    _design_checks(ex), pairs, pair_scores, tuning, shaping, chosen_x)
+                    _design_checks(ex), pairs, pair_scores, tuning, shaping, chosen_x,
+                    best_found(names, fam, ctrls, score))
+
+
+def best_found(names, family, controllers, score) -> str:
+    """The fixed controller reading x and ŵ of least training score among the designs and the
+    local searches (every family but the optimal LTI controller of the class).
+
+    Parameters
+    ----------
+    names : sequence of str
+    family, controllers, score : dict
+        Per name: its family, its controller and its training score.
+
+    Returns
+    -------
+    str
+    """
+    return min((k for k in names if controllers[k].reads_estimate and family[k] != "optimal LTI"),
+               key=lambda k: (score[k], list(names).index(k)))
 
 
 def _slowest_ok(fs: FixedSet, name: str) -> bool:

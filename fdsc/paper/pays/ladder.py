@@ -48,7 +48,8 @@ from fdsc.paper.shared.stats import bootstrap_median
 __all__ = ["PREDICTIVE_GRID", "N_CHOOSE", "law_band", "predictive_law", "scheduled",
            "choose_settings", "ladder_draw", "ladder_noisy", "direct_dwell", "summarize", "bootstrap_median",
            "RUNGS", "RUNG_WORDS", "MAX_TONES", "N_RECHECK", "recheck_ladder",
-           "best_realizable", "answer", "record_part", "REALIZABLE"]
+           "best_realizable", "answer", "record_part", "REALIZABLE", "FIXED_RUNGS", "SINCE_BREAK",
+           "control_rows", "control_energy", "control_peak", "excess_by_time", "N_PEAK", "PEAK_DT"]
 
 #: The predictive law's settings tried on the training draws: seconds of ŵ per identification
 #: and the largest share of the window's power its fit may leave unexplained; and the most tones
@@ -61,7 +62,7 @@ N_CHOOSE = 16
 #: The rung every other is scored against (its own ratio is 1 on every draw).
 REFERENCE = "best fixed (x, ŵ)"
 RUNGS = ("limit", "known tones", "predictive", "scheduled at breaks", "scheduled", "best fixed (x, ŵ)",
-         "best fixed (x)", "gain switching", "FDSC")
+         "best found (x, ŵ)", "best fixed (x)", "gain switching", "FDSC")
 #: Each rung in words (the glossary defines them).
 RUNG_WORDS = {
     "limit": "non-causal limit (knows the whole draw)",
@@ -70,10 +71,17 @@ RUNG_WORDS = {
     "scheduled at breaks": "LQ + feedforward per segment type, switched at the breaks",
     "scheduled": "LQ + feedforward per segment type, switched on ŵ",
     "best fixed (x, ŵ)": "best fixed controller reading x and ŵ",
+    "best found (x, ŵ)": "best fixed controller reading x and ŵ found by design and local search",
     "best fixed (x)": "best fixed controller reading x alone",
     "gain switching": "best law switching controllers on ŵ",
     "FDSC": "the paper's FDSC",
 }
+#: The fixed rungs whose control effort and robustness are reported (with the predictive law,
+#: whose feedback is its base's).
+FIXED_RUNGS = ("best fixed (x, ŵ)", "best found (x, ŵ)", "best fixed (x)")
+#: Edges (s) of the bins of time since the last break of the disturbance in which the predictive
+#: law's excess over the known-tones reference is summed.
+SINCE_BREAK = (0.0, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0, math.inf)
 #: The causal rungs whose share of the headroom is reported.
 REALIZABLE = ("predictive", "scheduled", "gain switching", "FDSC")
 
@@ -189,6 +197,98 @@ def choose_settings(example: str, fs: FixedSet, seed: int = SEED, n: int = N_CHO
             "hysteresis": float(h), "scores": {f"{k[0]:g}/{k[1]:g}": v for k, v in scores.items()}}
 
 
+def control_rows(plant) -> np.ndarray:
+    """The rows of z that hold only ``D2 u`` (no x, no d): their energy is the control effort as
+    z weighs it.
+
+    Parameters
+    ----------
+    plant : fdsc.Plant
+
+    Returns
+    -------
+    (p,) bool ndarray
+    """
+    return (np.all(plant.C == 0, axis=1) & np.all(plant.D1 == 0, axis=1)
+            & np.any(plant.D2 != 0, axis=1))
+
+
+def control_energy(plant, controller, d, horizon: float) -> float:
+    """``∫ ‖(D2 u)_rows‖²`` of a fixed controller on one draw (the rows of :func:`control_rows`),
+    exact (:func:`fdsc.loop_energy` of the closed loop with those outputs).
+
+    Parameters
+    ----------
+    plant : fdsc.Plant
+    controller : fdsc.Controller
+    d : fdsc.Piecewise or fdsc.Sinusoids
+    horizon : float
+
+    Returns
+    -------
+    float
+    """
+    loop = plant.closed_loop(controller)
+    rows = control_rows(plant)
+    return float(fdsc.loop_energy(fdsc.LTISystem(loop.A, loop.B, loop.C[rows], loop.D[rows]), d, horizon))
+
+
+#: Test draws on which the peak of the control effort of the fixed rungs is measured, and the
+#: step (s) of those sampled runs.
+N_PEAK, PEAK_DT = 3, 1e-3
+
+
+def control_peak(plant, controller, d, horizon: float, dt: float = PEAK_DT) -> float:
+    """The largest ``|(D2 u)_r|`` over the rows of :func:`control_rows` of a fixed controller on
+    one draw, sampled every ``dt`` (:func:`fdsc.simulate_stream` with traces).
+
+    Parameters
+    ----------
+    plant : fdsc.Plant
+    controller : fdsc.Controller
+    d : fdsc.Piecewise or fdsc.Sinusoids
+    horizon, dt : float
+
+    Returns
+    -------
+    float
+    """
+    loop = plant.closed_loop(controller)
+    rows = control_rows(plant)
+    run = fdsc.simulate_stream(fdsc.LTISystem(loop.A, loop.B, loop.C[rows], loop.D[rows]), d,
+                               round(horizon / dt) * dt, dt, trace_every=100 * dt)
+    return float(max(np.abs(run.trace.z_lo).max(), np.abs(run.trace.z_hi).max()))
+
+
+def excess_by_time(run, ref, d, edges=SINCE_BREAK) -> dict:
+    """The energy of ``run`` over ``ref`` (two runs of a :class:`fdsc.PredictiveLaw` on the same
+    pieces) summed in bins of time since the last break of ``d``.
+
+    Parameters
+    ----------
+    run, ref : fdsc.PredictiveRun
+    d : fdsc.Piecewise or fdsc.Sinusoids
+    edges : sequence of float, optional
+        The bins' edges (s).
+
+    Returns
+    -------
+    dict
+        ``{"excess", "reference", "seconds"}``: per bin, the excess energy, the reference's
+        energy and the seconds of the run in it.
+    """
+    if run.pieces.shape != ref.pieces.shape or not np.allclose(run.pieces[:, :2], ref.pieces[:, :2]):
+        raise ValueError("run and ref must be integrated on the same pieces")
+    breaks = np.asarray(d.breaks if isinstance(d, fdsc.Piecewise) else [0.0], dtype=float)
+    t0 = run.pieces[:, 0]
+    last = breaks[np.clip(np.searchsorted(breaks, t0 + 1e-9, side="right") - 1, 0, None)]
+    b = np.clip(np.searchsorted(np.asarray(edges), t0 - last, side="right") - 1, 0, len(edges) - 2)
+    nb = len(edges) - 1
+    return {"excess": np.bincount(b, run.pieces[:, 2] - ref.pieces[:, 2], nb).tolist(),
+            "reference": np.bincount(b, ref.pieces[:, 2], nb).tolist(),
+            "seconds": np.bincount(b, run.pieces[:, 1] - run.pieces[:, 0], nb).tolist()}
+
+
 def ladder_draw(example: str, index: int, seed: int, fs: FixedSet, settings: dict) -> dict:
     """The energies of the ladder's computed rungs on draw ``index``.
 
@@ -206,21 +306,30 @@ def ladder_draw(example: str, index: int, seed: int, fs: FixedSet, settings: dic
     dict
         ``{rung: energy}`` for the limit, the predictive law (and its tones known), the
         scheduled feedforward (at the breaks and decided), the best fixed controllers (x, ŵ)
-        and (x); ``index``.
+        (the one chosen in advance and the best found by design and search) and (x);
+        ``index``; ``control``: the control effort (:func:`control_energy`) of the fixed rungs and
+        the predictive law; ``excess``: the predictive law over its tones known, by time since
+        the last break (:func:`excess_by_time`).
     """
     ex, dr = seeded_draw(example, index, seed)
     law = predictive_law(example, fs, settings["window"], settings["max_residual"])
     sup = scheduled(example, fs)
     prep = sup.prepare(dr.d, dr.horizon)
+    known, pred = law.run_known(dr.d, dr.horizon), law.run(dr.d, dr.horizon)
+    fixed = {"best fixed (x, ŵ)": fs.chosen, "best found (x, ŵ)": fs.chosen_found,
+             "best fixed (x)": fs.chosen_x}
+    control = {rung: control_energy(ex.plant, fs.controllers[name], dr.d, dr.horizon)
+               for rung, name in fixed.items()}
+    control["predictive"] = float(pred.output_energy[control_rows(ex.plant)].sum())
     return {"index": index,
             "limit": fdsc.noncausal_limit(ex.plant, dr.d, dr.horizon).energy,
-            "known tones": law.run_known(dr.d, dr.horizon).energy,
-            "predictive": law.run(dr.d, dr.horizon).energy,
+            "known tones": known.energy,
+            "predictive": pred.energy,
             "scheduled at breaks": prep.segment_law(_segment_choice(prep, dr)),
             "scheduled": prep.run(forgetting=settings["forgetting"],
                                   hysteresis=settings["hysteresis"]).energy,
-            "best fixed (x, ŵ)": prep.energy_of(fs.controllers[fs.chosen]),
-            "best fixed (x)": prep.energy_of(fs.controllers[fs.chosen_x])}
+            **{rung: prep.energy_of(fs.controllers[name]) for rung, name in fixed.items()},
+            "control": control, "excess": excess_by_time(pred, known, dr.d)}
 
 
 def direct_dwell(example: str, fs: FixedSet, law: str):

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from fdsc._validation import as_choice, as_finite_real, as_matrix
-from fdsc.paper.pays.fixed_designs import FixedSet
+from fdsc.paper.pays.fixed_designs import FixedSet, best_found
 
 __all__ = ["FULL_FILE", "map_draws", "submit_draws", "load_full", "stored_fixed_set"]
 
@@ -99,7 +99,7 @@ def _stored_example(full, example) -> dict:
 
 
 #: The stored peaks and sizes of a fixed controller (:attr:`FixedSet.info`).
-_INFO = ("lf", "hf", "hinf", "states", "size", "reads_estimate", "slowest")
+_INFO = ("lf", "hf", "hinf", "states", "size", "reads_estimate", "slowest", "expected_power")
 
 
 def stored_fixed_set(full: dict, example: str) -> FixedSet:
@@ -161,7 +161,8 @@ def stored_fixed_set(full: dict, example: str) -> FixedSet:
                          "fixed controller (x) is chosen among them)")
     chosen_x = min(x_only, key=lambda k: (score[k], names.index(k)))
     return FixedSet(example, full["n"], full["seed"], 0, names, ctrls, family, info, score,
-                    r["fixed_in_advance"], [], {}, pairs, {}, {}, None, chosen_x)
+                    r["fixed_in_advance"], [], {}, pairs, {}, {}, None, chosen_x,
+                    best_found(names, family, ctrls, score))
 
 
 def _stored_controller(m, name, at):

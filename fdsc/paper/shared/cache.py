@@ -32,7 +32,8 @@ try:
 except ImportError:        # not POSIX: no lock (concurrent processes may compute a value twice)
     fcntl = None
 
-__all__ = ["cached", "fingerprint", "source_fingerprint", "STORED_OUTPUTS", "shared_results", "file_lock",
+__all__ = ["cached", "fingerprint", "source_fingerprint", "study_fingerprint", "STUDY_MODULE",
+           "STORED_OUTPUTS", "shared_results", "file_lock",
            "worker_threads", "environ",
            "CACHE_ENV", "THREAD_VARS"]
 
@@ -85,6 +86,50 @@ def fingerprint() -> str:
     64
     """
     return _hash(True)
+
+
+#: The module of the stored full study: its fingerprint covers what it imports (:func:`study_fingerprint`).
+STUDY_MODULE = "fdsc.paper.pays.disturbance_law_full"
+
+
+@functools.cache
+def study_fingerprint(module: str = STUDY_MODULE) -> str:
+    """Hash of exactly what a stored study's numbers depend on: the source of every fdsc module
+    ``module`` imports, directly or not (:func:`fdsc.paper.shared.imports.closure`: the whole
+    library and the paper layer's modules on its import path), the package's data files but its
+    stored outputs (:data:`STORED_OUTPUTS`), and the numerical packages' versions.
+
+    A change of a chapter's prose, figures or record (modules the study does not import) leaves
+    it unchanged, so the book can tell a stale study from one that is merely older than the
+    build's commit.
+
+    Parameters
+    ----------
+    module : str, optional
+
+    Returns
+    -------
+    str
+        SHA-256 hex digest.
+    """
+    from fdsc.paper.shared.imports import ROOT, closure, import_graph
+
+    graph = import_graph(ROOT)
+    files = {ROOT.parent / Path(*m.split(".")) for m in closure(graph, module)}
+    paths = sorted([p.with_suffix(".py") if p.with_suffix(".py").is_file() else p / "__init__.py"
+                    for p in files]
+                   + [p for p in ROOT.rglob("*.json") if "__pycache__" not in p.parts
+                      and str(p.relative_to(ROOT)) not in STORED_OUTPUTS])
+    h = hashlib.sha256()
+    for path in paths:
+        h.update(str(path.relative_to(ROOT)).encode())
+        h.update(path.read_bytes())
+    for pkg in ("numpy", "scipy", "cvxpy", "clarabel", "numba"):
+        try:
+            h.update(f"{pkg}={version(pkg)}".encode())
+        except PackageNotFoundError:
+            h.update(f"{pkg}=none".encode())
+    return h.hexdigest()
 
 
 @functools.cache
