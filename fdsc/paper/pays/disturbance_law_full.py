@@ -106,6 +106,7 @@ def full_study(n: int = N_FULL, *, seed: int = SEED, executor=None, out=None) ->
             "test_indices": [r["index"] for r in st.test],
             "ratio_vs_fixed_in_advance": st.ratio().tolist(),
             "fixed_ratio": {k: st.fixed_ratio(k).tolist() for k in fs.names},
+            "fixed_energy": {k: [r["fixed"][k] for r in st.test] for k in fs.names},
             "fdsc_ratio": {v: st.fdsc_ratio(v).tolist() for v in st.test[0]["fdsc"]},
             "reference_ratio": {f: st.reference_ratio(f).tolist() for f in REFERENCE_FAMILIES},
             "family_best": {p: st.best_of(p) for p in FAMILIES},
@@ -189,6 +190,8 @@ def ladder_study(example: str, fs: FixedSet, st, seed: int, executor=None) -> di
     peaks = map_draws(_fixed_peaks, [(example, i, seed, fs, fixed_names) for i in idx[:N_PEAK]], executor)
     ratios["gain switching"] = [r["runs"][st.law][0] / r["fixed"][fs.chosen] for r in st.test]
     ratios["FDSC"] = [r["fdsc"]["FDSC"][0] / r["fixed"][fs.chosen] for r in st.test]
+    energies["gain switching"] = [r["runs"][st.law][0] for r in st.test]
+    energies["FDSC"] = [r["fdsc"]["FDSC"][0] for r in st.test]
     m = min(N_ROBUST, len(idx))
     noisy = {}
     _sup, tau = direct_dwell(example, fs, st.law)

@@ -236,9 +236,9 @@ def static_front(example: str) -> tuple:
     front : fdsc.ParetoFront
         :data:`FRONT_POINTS` bounds from 1.02 times the LF design's LF peak to the H∞ gain's.
     checks : list of dict
-        Per point: ``beta``, ``lf``, ``hf``, ``dominated`` (a direct search from the
-        neighbouring points and the LQR gain found a gain beating it in both bands),
-        ``by`` (that gain's ``[hf, lf]``, or None).
+        Per point: ``beta``, ``lf``, ``hf``, ``certified`` (Lemma 1 certifies its peaks),
+        ``dominated`` (a direct search from the neighbouring points and the LQR gain found a gain
+        beating it in both bands), ``by`` (that gain's ``[hf, lf]``, or None).
     """
     ex = _example(example)
     lo = fdsc.band_peak(ex.closed_loop("PassC-LF"), ex.bands["LF"]).gamma
@@ -251,15 +251,15 @@ def static_front(example: str) -> tuple:
     checks = []
     for j, p in enumerate(front.points):
         if p is None:
-            checks.append({"beta": float(front.betas[j]), "lf": None, "hf": None, "dominated": None,
-                           "by": None})
+            checks.append({"beta": float(front.betas[j]), "lf": None, "hf": None, "certified": None,
+                           "dominated": None, "by": None})
             continue
         starts = [g for g in (gains[j - 1] if j else None, gains[j + 1] if j + 1 < len(gains) else None)
                   if g is not None] + [K_lqr]
         found = fdsc.dominating_gain(ex.plant, ex.bands["HF"], ex.bands["LF"], p.peak, starts,
                                      maxiter=CHECK_MAXITER)
         checks.append({"beta": float(p.beta), "lf": float(p.peak[1]), "hf": float(p.peak[0]),
-                       "dominated": found is not None,
+                       "certified": p.certified, "dominated": found is not None,
                        "by": None if found is None else [float(v) for v in found[1]]})
     return front, checks
 

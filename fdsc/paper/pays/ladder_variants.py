@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 import fdsc
-from fdsc.paper.pays.disturbance_law_draws import SEED, _example, draw
+from fdsc.paper.pays.disturbance_law_draws import SEED, _example, draw, segment_class
 from fdsc.paper.pays.fixed_designs import FF_MAXITER, FixedSet, ff_poles
 
 __all__ = ["VARIANTS", "VARIANT_WORDS", "NOISE_VARIANT_TONES", "N_TUNE_VARIANT", "N_TEST_VARIANT",
@@ -61,7 +61,9 @@ def variant_draw(example: str, variant: str, index: int, seed: int = SEED):
 def variant_controllers(example: str, variant: str, fs: FixedSet, seed: int = SEED,
                         n_tune: int = N_TUNE_VARIANT) -> dict:
     """The best fixed controllers tuned on a variant's training draws: ``{"best fixed (x, ŵ)",
-    "best fixed (x)"}``, with the structures of the main class's choices.
+    "best fixed (x)"}``, with the structures of the main class's choices (the optimal LTI
+    controller designed again for the variant's mean spectrum, which only its segments' lengths
+    change).
 
     Parameters
     ----------
@@ -84,6 +86,10 @@ def variant_controllers(example: str, variant: str, fs: FixedSet, seed: int = SE
     for rung, name in (("best fixed (x, ŵ)", fs.chosen), ("best fixed (x)", fs.chosen_x)):
         c = fs.controllers[name]
         spec = ff_poles(example).get(name)
+        if fs.family.get(name) == "optimal LTI":      # designed again for the variant's spectrum
+            cls = segment_class(example, VARIANTS[variant].get("length_scale", 1.0))
+            out[rung] = fdsc.optimal_lti(plant, cls, name=name).controller
+            continue
         if spec is not None:                          # a tuned controller that reads ŵ
             structure, ff = spec
             start = fs.controllers["tuned filtered"] if structure == "filtered" else fs.controllers["tuned"].D
@@ -176,7 +182,7 @@ def variant_study(example: str, fs: FixedSet, settings: dict, seed: int = SEED, 
     Returns
     -------
     dict
-        ``{variant: {"draws", "summary", "ratios"}}``.
+        ``{variant: {"draws", "summary", "ratios", "energies"}}`` (the energies per rung and draw).
     """
     from fdsc.paper.pays.ladder import summarize
     from fdsc.paper.pays.stored_study import map_draws
@@ -190,5 +196,6 @@ def variant_study(example: str, fs: FixedSet, settings: dict, seed: int = SEED, 
         rows = map_draws(variant_row, [(example, variant, i, seed, ctrls, settings) for i in idx], executor)
         ref = np.array([r["best fixed (x, ŵ)"] for r in rows])
         ratios = {k: (np.array([r[k] for r in rows]) / ref).tolist() for k in rows[0]}
-        out[variant] = {"draws": n, "summary": summarize(ratios), "ratios": ratios}
+        out[variant] = {"draws": n, "summary": summarize(ratios), "ratios": ratios,
+                        "energies": {k: [r[k] for r in rows] for k in rows[0]}}
     return out
