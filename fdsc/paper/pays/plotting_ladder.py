@@ -1,13 +1,18 @@
 """The figure of chapter 'ladder' (summaries in, Axes out)."""
 
+import math
+
+import numpy as np
+
 from fdsc.paper.shared.plotting import _axes
 
-__all__ = ["KIND", "KIND_STYLE", "SHORT", "plot_ladder"]
+__all__ = ["KIND", "KIND_STYLE", "SHORT", "plot_ladder", "plot_excess_by_time"]
 
 #: The rungs' labels in the figure (the chapter's table and glossary say them in full).
 SHORT = {"limit": "non-causal limit", "known tones": "tones known", "predictive": "predictive law",
          "scheduled at breaks": "feedforward per type, at the breaks",
          "scheduled": "feedforward per type, on ŵ", "best fixed (x, ŵ)": "best fixed (x, ŵ)",
+         "best found (x, ŵ)": "best found (x, ŵ)",
          "best fixed (x)": "best fixed (x)", "gain switching": "gain switching on ŵ",
          "FDSC": "the paper's FDSC"}
 
@@ -16,7 +21,7 @@ KIND = {"limit": "bound", "known tones": "reference", "scheduled at breaks": "re
         "predictive": "realizable law", "scheduled": "realizable law",
         "gain switching": "realizable law",
         "FDSC": "realizable law", "best fixed (x, ŵ)": "fixed controller",
-        "best fixed (x)": "fixed controller"}
+        "best found (x, ŵ)": "fixed controller", "best fixed (x)": "fixed controller"}
 #: Marker and colour per kind (colour-blind safe; red stays PassC-LF's in the book).
 KIND_STYLE = {"bound": ("k", "D"), "reference": ("#7f7f7f", "s"), "realizable law": ("#0072b2", "o"),
               "fixed controller": ("#e69f00", "^")}
@@ -83,3 +88,48 @@ def plot_ladder(summary: dict, ax=None, *, xlim=None, words=None, legend=True):
         ax.legend(handles=handles, fontsize=8.5, loc="lower center", bbox_to_anchor=(0.5, 1.08), ncol=4,
                   frameon=False)
     return ax
+
+
+def plot_excess_by_time(excess: dict, ax=None, *, label=None, color="#0072b2", offset=0.0, width=0.38):
+    """Where the predictive law's excess over its tones known goes: per bin of time since the last
+    break, the share of the whole excess energy (bars), with the excess per unit of the
+    reference's energy in that bin written above each bar.
+
+    Parameters
+    ----------
+    excess : dict
+        ``{"edges", "excess", "reference", "seconds"}`` as the stored study keeps them (per draw
+        and bin; an edge None is infinity).
+    ax : Axes, optional
+    label : str, optional
+    color : str, optional
+    offset, width : float, optional
+        The bars' place within a bin's slot (two examples side by side).
+
+    Returns
+    -------
+    Axes
+    """
+    ax = _axes(ax, (7, 3.2))
+    edges = [math.inf if e is None else float(e) for e in excess["edges"]]
+    ex = np.sum(np.asarray(excess["excess"], dtype=float), axis=0)
+    ref = np.sum(np.asarray(excess["reference"], dtype=float), axis=0)
+    share = ex / ex.sum()
+    x = np.arange(share.size) + offset
+    ax.bar(x, 100 * share, width=width, color=color, label=label)
+    for xi, sh, e, r in zip(x, share, ex, ref, strict=True):
+        if r > 0:
+            ax.text(xi, 100 * max(sh, 0.0) + 1.0, f"{100 * e / r:+.0f} %", ha="center", va="bottom",
+                    fontsize=7, rotation=90, color=color)
+    labels = [f"{_fmt(a)}–{_fmt(b)}" if math.isfinite(b) else f"≥ {_fmt(a)}"
+              for a, b in zip(edges[:-1], edges[1:], strict=True)]
+    ax.set_xticks(np.arange(share.size))
+    ax.set_xticklabels(labels, rotation=30, ha="right")
+    ax.set_xlabel("time since the last break of the disturbance (s)")
+    ax.set_ylabel("share of the excess energy (%)")
+    ax.axhline(0.0, color="k", lw=0.6)
+    return ax
+
+
+def _fmt(v):
+    return f"{v:g}"
