@@ -5,16 +5,13 @@ of cases, how often each member is the best (chapter 'baselines' shows it).
 import numpy as np
 
 from fdsc.paper.pays.baselines import baselines
-from fdsc.paper.pays.disturbance_law_draws import SEED
-from fdsc.paper.pays.fixed_designs import FAMILIES, fixed_set
+from fdsc.paper.pays.fixed_designs import FAMILIES
 from fdsc.paper.pays.generic_example import generic_study
 from fdsc.paper.pays.monte_carlo import monte_carlo
+from fdsc.paper.pays.stored_study import load_full
 from fdsc.paper.shared.comparators import DEFINITION, best_fixed, comparators
 from fdsc.paper.shared.fixed_choice import fixed_in_advance
 from fdsc.paper.shared.results import RecordPart, entry
-
-#: The draws of the record's subset (chapter 'disturbance_law').
-N_RECORD = 12
 
 __all__ = ["record_part"]
 
@@ -52,9 +49,11 @@ def record_part():
     n_cases = sum(best["aircraft"][f][n] for f in ("stationary", "mixed", "piecewise") for n in air)
     wins = {n: sum(best["aircraft"][f][n] for f in ("stationary", "mixed", "piecewise")) for n in air}
     every, chosen = {}, {}
+    full = load_full()
     for example in ("aircraft", "generic"):
-        fs = fixed_set(example, N_RECORD, SEED)
-        every[example] = {fam: [n for n in fs.names if fs.family[n] == fam] for fam in FAMILIES}
+        # every fixed controller of Part II, as the stored study designed them
+        fc = full[example]["fixed_controllers"] if full is not None else {}
+        every[example] = {fam: [n for n, v in fc.items() if v["family"] == fam] for fam in FAMILIES}
         chosen[example] = fixed_in_advance(example)[0]
     note = (f"the comparator set of the paper's setting: {DEFINITION}. Over the {n_cases} simulation "
             "cases of the paper on the aircraft its best member is "
