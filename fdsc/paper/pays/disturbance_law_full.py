@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 import math
+import sys
 import time
 from pathlib import Path
 
@@ -57,6 +58,7 @@ class _Clock:
         now = time.perf_counter()
         self.seconds[phase] = round(now - self._t, 1)
         self._t = now
+        print(f"full study: {phase} took {self.seconds[phase]:.0f} s", file=sys.stderr, flush=True)
 
 
 def full_study(n: int = N_FULL, *, seed: int = SEED, executor=None, out=None) -> dict:
