@@ -82,7 +82,9 @@ def law_rows(record, full=None, *, fresh=True):
                  f"{html.escape(str(full['commit']).split()[0][:7])}"
                  + ("" if fresh else " (the sources have changed since)"))
         rows += [_law_row(label, e, full[e]) for e in _LAW_EXAMPLES if e in full]
-    check = next((e for e in entries_of(record) if e["id"] == LAW_ENTRY), None)
+    # the record entry carries the stored study's summary (rechecked at build time on its first
+    # test draws): a row of its own only where the stored study is not in this checkout
+    check = next((e for e in entries_of(record) if e["id"] == LAW_ENTRY), None) if full is None else None
     for example, r in (check or {}).get("recomputed", {}).items():
         n = int(r["draws_test"]) + int(r.get("draws_train", 0))
         label = (f"build-time check: the procedure rerun on the first {count(n)} draws of the seeded "

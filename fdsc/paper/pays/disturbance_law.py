@@ -180,6 +180,14 @@ def recheck_law(example: str, k: int = N_RECHECK_LAW) -> dict:
             "largest_difference": float(max(abs(a / b - 1.0) for a, b in zip(ratios, stored, strict=True)))}
 
 
+#: The stored study's summary of each example that the record entry carries (as stored).
+STORED_SUMMARY = ("law", "fixed_in_advance", "fixed_in_advance_family", "draws_train", "draws_test",
+                  "median_ratio_vs_fixed_in_advance", "p95_ratio_vs_fixed_in_advance",
+                  "win_rate_vs_fixed_in_advance", "reference_family", "reference_median_ratio",
+                  "reference_share_median", "fdsc_median_ratio", "switches_per_change",
+                  "largest_control_step_median", "diverged", "certified", "certificate", "meets_targets")
+
+
 def record_part() -> RecordPart:
     """Record entry ``supervisor`` (new): the stored study's law per example, the chosen law
     recomputed on its first test draws (:func:`recheck_law`) and along the ρ_t family."""
@@ -190,9 +198,7 @@ def record_part() -> RecordPart:
     sup = {}
     for example in ("aircraft", "generic"):
         r = full[example]
-        sup[example] = {k: r[k] for k in ("law", "fixed_in_advance", "median_ratio_vs_fixed_in_advance",
-                                          "win_rate_vs_fixed_in_advance", "reference_median_ratio")
-                        if k in r} | {
+        sup[example] = {k: r[k] for k in STORED_SUMMARY if k in r} | {
             "recheck": recheck_law(example),
             "rho_t_ratio_vs_fixed_in_advance":
                 rho_t_family(example, law_key(r["law"]))["ratio_vs_fixed_in_advance"]}
