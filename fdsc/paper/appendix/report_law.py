@@ -41,15 +41,16 @@ def _law_row(study, example, r):
 
 
 def law_rows(record, full=None, *, fresh=True):
-    """The law on the disturbance estimate: the stored study's numbers, labelled with its commit,
-    then the record's build-time check of it, per example.
+    """The law on the disturbance estimate per example: the stored study's numbers, labelled with
+    its commit; where this checkout has no stored study, the record's build-time check instead.
 
     Parameters
     ----------
     record : dict
         The reproduction record (its entry :data:`LAW_ENTRY`: the check).
     full : dict, optional
-        The stored study (:func:`fdsc.paper.pays.disturbance_law.load_full`); None if absent.
+        The stored study (:func:`fdsc.paper.pays.disturbance_law.load_full`); None if absent
+        (then the rows are the record's build-time check).
     fresh : bool, optional
         The sources of this build are those the stored study was computed with.
 
@@ -72,9 +73,11 @@ def law_rows(record, full=None, *, fresh=True):
     >>> rec = {"entries": [{"id": "supervisor", "verdict": "new", "recomputed": {"aircraft": one}}]}
     >>> full = {"n": 500, "commit": "048c47d821e7", "aircraft": dict(one, draws_test=250)}
     >>> [(r["scored"], r["median"]) for r in law_rows(rec, full)]
-    [('250', '×0.960'), ('6', '×0.960')]
+    [('250', '×0.960')]
     >>> law_rows(rec, full)[0]["study"]
     'stored study: 500 draws per example, computed at commit 048c47d'
+    >>> [(r["scored"], r["median"]) for r in law_rows(rec)]
+    [('6', '×0.960')]
     """
     rows = []
     if full is not None:
