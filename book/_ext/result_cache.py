@@ -11,13 +11,18 @@ fresh folder ``<outdir>/../.fdsc-cache`` of its own.
 
 If any chapter is to be executed (the notebook cache does not hold it for these sources), the
 whole reproduction record is computed first, on :func:`fdsc.paper.record.record_jobs`
-processes: the chapters, executed one after the other by the build, then read their results
-instead of computing them one chapter at a time on one core.
+processes; then those chapters are executed as many at a time, each in its own kernel, longest
+first (by the cold times the environment page shows), and every chapter that ran without error
+is stored in the notebook cache (:func:`notebook_cache.store_execution`), where MyST-NB finds
+it. A chapter that failed is not stored: MyST-NB executes it again itself and reports its error
+as usual. MyST-NB would execute the chapters one after the other on one core.
 """
 
+import json
 import os
 import shutil
 import time
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import nbformat
@@ -52,10 +57,60 @@ def _precompute_record(app):
         return
     from fdsc.paper.record import record_jobs, reproduction_record
 
+    jobs = record_jobs()
     start = time.perf_counter()
     reproduction_record()
-    print(f"result_cache: the reproduction record computed on {record_jobs()} processes in "
+    print(f"result_cache: the reproduction record computed on {jobs} processes in "
           f"{time.perf_counter() - start:.0f} s before executing {len(todo)} chapters")
+    if jobs > 1 and len(todo) > 1:
+        _execute_chapters(app, todo, jobs)
+
+
+def _longest_first(app, paths):
+    """``paths`` ordered by their last measured cold time, longest first (unknown ones first)."""
+    try:
+        times = json.loads((Path(app.srcdir) / "data" / "cold_times.json").read_text())["chapters"]
+    except (OSError, ValueError, KeyError):
+        times = {}
+    return sorted(paths, key=lambda p: -times.get(p.stem, float("inf")))
+
+
+def _execute_one(app, path):
+    """Execute one chapter in its own kernel; store it in the notebook cache if no cell failed.
+    Returns ``(stem, seconds, stored)``."""
+    from nbclient import NotebookClient
+    from notebook_cache import error_outputs, store_execution
+
+    from fdsc.paper.shared.cache import file_lock
+
+    source = nbformat.read(str(path), as_version=4)
+    executed = nbformat.read(str(path), as_version=4)
+    start = time.perf_counter()
+    try:
+        NotebookClient(executed, timeout=app.config.nb_execution_timeout, allow_errors=True,
+                       kernel_name=source.metadata.get("kernelspec", {}).get("name", "python3"),
+                       resources={"metadata": {"path": str(path.parent)}}).execute()
+    except Exception:   # noqa: BLE001 — MyST-NB executes it again and reports the error itself
+        return path.stem, time.perf_counter() - start, False
+    seconds = time.perf_counter() - start
+    if error_outputs(executed):
+        return path.stem, seconds, False
+    lock = Path(app.config.nb_execution_cache_path).parent.parent / ".jupyter_cache.lock"
+    with file_lock(lock):
+        store_execution(app.config.nb_execution_cache_path, source, executed, str(path.resolve()), seconds)
+    return path.stem, seconds, True
+
+
+def _execute_chapters(app, todo, jobs):
+    from fdsc.paper.shared.cache import worker_threads
+
+    start = time.perf_counter()
+    with worker_threads(jobs), ThreadPoolExecutor(jobs) as pool:
+        done = list(pool.map(lambda p: _execute_one(app, p), _longest_first(app, todo)))
+    failed = [stem for stem, _s, stored in done if not stored]
+    print(f"result_cache: {len(done) - len(failed)} chapters executed, {jobs} at a time, in "
+          f"{time.perf_counter() - start:.0f} s"
+          + (f"; left to MyST-NB (a cell failed): {', '.join(failed)}" if failed else ""))
 
 
 def setup(app):
