@@ -142,8 +142,9 @@ JOBS_ENV = "FDSC_JOBS"
 
 # the chapters that take longest are started first (a scheduling hint: the record does not
 # depend on it); the others follow in the order of CHAPTERS
-_LONGEST_FIRST = (disturbance_law, fixed_controllers, nonstationary, monte_carlo, wellposed,
-                  theorem1_counterexamples, theorem1, baselines, passive_controllers, stationary)
+_LONGEST_FIRST = (nonstationary, monte_carlo, passive_controllers, theorem1_counterexamples, wellposed,
+                  ladder, fixed_controllers, frequency_selective, three_mode, generic_example,
+                  disturbance_law, theorem1, baselines, stationary, gkyp_lemma)
 
 
 def record_jobs():
