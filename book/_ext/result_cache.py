@@ -96,6 +96,7 @@ def _execute_one(app, path):
     if error_outputs(executed):
         return path.stem, seconds, False
     lock = Path(app.config.nb_execution_cache_path).parent.parent / ".jupyter_cache.lock"
+    lock.parent.mkdir(parents=True, exist_ok=True)
     with file_lock(lock):
         store_execution(app.config.nb_execution_cache_path, source, executed, str(path.resolve()), seconds)
     return path.stem, seconds, True
