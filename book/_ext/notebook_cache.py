@@ -235,6 +235,26 @@ def cached_execution(folder, source):
     return None if error_outputs(merged) else merged
 
 
+def writer_lock(folder):
+    """The lock that lets one writer at a time store in the notebook caches beside ``folder``
+    (the workers of ``pytest -n`` and the book build's parallel chapters store concurrently):
+    ``.jupyter_cache.lock`` in the build folder that holds ``.jupyter_cache/<key>``.
+
+    Parameters
+    ----------
+    folder : path-like
+        A cache folder (:func:`cache_path`).
+
+    Returns
+    -------
+    context manager
+        :func:`fdsc.paper.shared.cache.file_lock` on that file (its folder made if missing).
+    """
+    lock = Path(folder).parent.parent / ".jupyter_cache.lock"
+    lock.parent.mkdir(parents=True, exist_ok=True)
+    return file_lock(lock)
+
+
 def caching_execute(execute, root=ROOT, kernel_env=None):
     """Wrap nbmake's ``NotebookRun.execute`` so that every successful execution is cached.
 
@@ -279,13 +299,10 @@ def caching_execute(execute, root=ROOT, kernel_env=None):
         seconds = time.perf_counter() - start
         if (result.error is None and not error_outputs(result.nb) and own_kernel
                 and not run.find_import_errors and source_key(root) == key):
-            # one writer at a time: the workers of ``pytest -n`` store chapters concurrently
-            lock = Path(root) / "book" / "_build" / ".jupyter_cache.lock"
-            lock.parent.mkdir(parents=True, exist_ok=True)
-            with file_lock(lock):
+            folder = cache_path(root, key)
+            with writer_lock(folder):
                 prune_other_keys(root, key)
-                store_execution(cache_path(root, key), source, result.nb,
-                                str(Path(run.filename).resolve()), seconds)
+                store_execution(folder, source, result.nb, str(Path(run.filename).resolve()), seconds)
         return result
 
     return run_and_store

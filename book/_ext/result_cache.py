@@ -18,6 +18,7 @@ it. A chapter that failed is not stored: MyST-NB executes it again itself and re
 as usual. MyST-NB would execute the chapters one after the other on one core.
 """
 
+import copy
 import json
 import os
 import shutil
@@ -79,12 +80,10 @@ def _execute_one(app, path):
     """Execute one chapter in its own kernel; store it in the notebook cache if no cell failed.
     Returns ``(stem, seconds, stored)``."""
     from nbclient import NotebookClient
-    from notebook_cache import error_outputs, store_execution
-
-    from fdsc.paper.shared.cache import file_lock
+    from notebook_cache import error_outputs, store_execution, writer_lock
 
     source = nbformat.read(str(path), as_version=4)
-    executed = nbformat.read(str(path), as_version=4)
+    executed = copy.deepcopy(source)
     start = time.perf_counter()
     try:
         NotebookClient(executed, timeout=app.config.nb_execution_timeout, allow_errors=True,
@@ -95,9 +94,7 @@ def _execute_one(app, path):
     seconds = time.perf_counter() - start
     if error_outputs(executed):
         return path.stem, seconds, False
-    lock = Path(app.config.nb_execution_cache_path).parent.parent / ".jupyter_cache.lock"
-    lock.parent.mkdir(parents=True, exist_ok=True)
-    with file_lock(lock):
+    with writer_lock(app.config.nb_execution_cache_path):
         store_execution(app.config.nb_execution_cache_path, source, executed, str(path.resolve()), seconds)
     return path.stem, seconds, True
 
