@@ -12,7 +12,10 @@ and the share of trials that returned no tone in the band. Three identifications
   samples, 48 lags, its rank tolerance);
 * **raw**: the same ESPRIT on the samples themselves (its lag matrix built from y, not from its
   second differences), 48 lags;
-* **raw N/3**: the same with lags a third of the window.
+* **raw N/3**: the same with lags a third of the window;
+* **confident**: :func:`fdsc.confident.raw_esprit`, the identification of
+  :class:`fdsc.confident.ConfidentPredictiveLaw` (samples themselves, lags a third of the window
+  up to 160, its rank set by the noise floor).
 
 Second differences multiply a tone of frequency ω by (2 sin(ωh/2))², white noise by 6 on average:
 at the aircraft's fine step a tone low in the band drowns in the differenced noise.
@@ -29,6 +32,7 @@ import os
 import numpy as np
 
 from fdsc._tones import _esprit
+from fdsc.confident import raw_esprit
 from fdsc.predictive import DEFAULT_LAGS, DEFAULT_RANK_TOL, EDGE_SHARE
 from fdsc.tone_bound import frequency_bound
 
@@ -43,6 +47,8 @@ PHASE = 0.7
 
 def _identify(y, step, band, lags, raw):
     """ESPRIT's frequencies in the band (the law's rank tolerance, one tone at most)."""
+    if raw == "confident":
+        return raw_esprit(y, step, band, max_tones=1)
     if raw:
         y = np.cumsum(np.cumsum(y))     # its second differences are the samples themselves
     return _esprit(y, step, band[0], band[1], 1, lags, DEFAULT_RANK_TOL, EDGE_SHARE)
@@ -54,7 +60,8 @@ def cell(band, step, omega, window, snr_db, trials, seed):
     clean = np.cos(omega * t + PHASE)
     sigma2 = 0.5 / 10 ** (snr_db / 10)
     rng = np.random.default_rng(seed)
-    methods = {"law": (DEFAULT_LAGS, False), "raw": (DEFAULT_LAGS, True), "raw N/3": (n // 3, True)}
+    methods = {"law": (DEFAULT_LAGS, False), "raw": (DEFAULT_LAGS, True), "raw N/3": (n // 3, True),
+               "confident": (0, "confident")}
     err = {m: [] for m in methods}
     miss = dict.fromkeys(methods, 0)
     for _ in range(trials):
@@ -81,7 +88,8 @@ def main(argv=None):
           "per cell; RMS error / Cramér–Rao bound (share of trials with no tone)")
     for example, (band, step, tones) in EXAMPLES.items():
         print(f"\n{example}: band ({band[0]:.3g}, {band[1]:.3g}) rad/s, step {step * 1e3:.3g} ms")
-        print(f"{'tone':>6} {'window':>7} {'SNR dB':>7} | {'law':>16} | {'raw':>16} | {'raw N/3':>16}")
+        print(f"{'tone':>6} {'window':>7} {'SNR dB':>7} | {'law':>16} | {'raw':>16} | {'raw N/3':>16} | "
+              f"{'confident':>16}")
         for k, omega in enumerate(tones):
             for window in WINDOWS:
                 for snr in SNR_DB:

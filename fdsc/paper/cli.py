@@ -16,6 +16,12 @@ python -m fdsc disturbance-law [--n N] [--workers W] [--scheduler ADDRESS] [--ou
                                      scheduler, written to FILE (default:
                                      out/disturbance_law_full.json; --replace writes the stored
                                      study book/data/disturbance_law_full.json that the book reads)
+python -m fdsc information [--workers W] [--replace]
+                                     the ladder under measurement noise, delay and model error on
+                                     the stored study's draws (fdsc.paper.pays.information)
+python -m fdsc adaptive-rung [--workers W] [--replace]
+                                     the ladder's adaptive-regulation rung on the stored study's
+                                     draws (fdsc.paper.pays.adaptive_rung)
 """
 
 import argparse

@@ -6,7 +6,8 @@ import numpy as np
 
 from fdsc.paper.shared.plotting import _axes
 
-__all__ = ["KIND", "KIND_STYLE", "SHORT", "plot_ladder", "plot_excess_by_time"]
+__all__ = ["KIND", "KIND_STYLE", "SHORT", "plot_ladder", "plot_excess_by_time", "plot_noise_levels",
+           "NOISE_RUNGS"]
 
 #: The rungs' labels in the figure (the chapter's table and glossary say them in full).
 SHORT = {"limit": "non-causal limit", "known tones": "tones known", "predictive": "predictive law",
@@ -133,3 +134,56 @@ def plot_excess_by_time(excess: dict, ax=None, *, label=None, color="#0072b2", o
 
 def _fmt(v):
     return f"{v:g}"
+
+
+#: The rungs of :func:`plot_noise_levels`: label, kind (:data:`KIND_STYLE`) and line style.
+NOISE_RUNGS = {"limit": ("non-causal limit (exact d)", "bound", ":"),
+               "predictive (confident)": ("predictive law with a confidence check", "realizable law", "-"),
+               "best fixed (x, ŵ)": ("best fixed (x, ŵ) at this noise", "fixed controller", "-"),
+               "best fixed (x)": ("best fixed (x)", "fixed controller", "--")}
+
+
+def plot_noise_levels(rows: list, ax=None, *, title=None, legend=True):
+    """One example's ladder against the noise level: per rung the median ratio to the best fixed
+    controller at that level with its bootstrap 95 % interval (bars), levels from the exact
+    estimate (left) to the noisiest (right), on a log axis.
+
+    Parameters
+    ----------
+    rows : list of dict
+        :func:`fdsc.paper.pays.information.summary`: ``{"level", rung: (median, lo, hi, wins)}``.
+    ax : Axes, optional
+    title : str, optional
+    legend : bool, optional
+
+    Returns
+    -------
+    Axes
+    """
+    ax = _axes(ax, (7, 3.6))
+    x = np.arange(len(rows))
+    for k, (rung, (label, kind, ls)) in enumerate(NOISE_RUNGS.items()):
+        if not all(rung in r for r in rows):
+            continue
+        color, marker = KIND_STYLE[kind]
+        med = np.array([r[rung][0] for r in rows])
+        lo = np.array([r[rung][1] for r in rows])
+        hi = np.array([r[rung][2] for r in rows])
+        dx = (k - 1.5) * 0.06                       # side by side where intervals would overlap
+        mfc = "white" if ls == "--" else color
+        ax.errorbar(x + dx, med, yerr=[med - lo, hi - med], color=color, marker=marker, ls=ls, lw=1.4, ms=6,
+                    mfc=mfc, capsize=3, label=label)
+    ax.axhline(1.0, color="#bbbbbb", lw=0.8, zorder=0)
+    ax.set_yscale("log")
+    ax.set_xticks(x, [r["level"] for r in rows])
+    ax.set_xlabel("white noise on what the controllers sample (signal-to-noise ratio)")
+    ax.set_ylabel("energy / best fixed at this noise")
+    ticks = [0.7, 0.8, 0.9, 1.0, 1.1, 1.2, 1.3]
+    ax.set_yticks(ticks, [f"{t:g}" for t in ticks])
+    ax.minorticks_off()
+    if title:
+        ax.set_title(title, fontsize=10, loc="left")
+    if legend:
+        ax.legend(fontsize=8, loc="lower left", ncol=2, frameon=False)
+    return ax
+

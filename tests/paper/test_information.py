@@ -1,0 +1,114 @@
+"""The ladder under measurement noise, delay and model error (fdsc.paper.pays.information) and the
+adaptive-regulation rung (fdsc.paper.pays.adaptive_rung): their stored results against the stored
+study they were computed on, the bound, and a recomputation of their fixed parts."""
+
+import math
+
+import numpy as np
+import pytest
+
+from fdsc.paper.pays import adaptive_rung as ar
+from fdsc.paper.pays import information as inf
+from fdsc.paper.pays.stored_study import load_full
+
+EXAMPLES = ("aircraft", "generic")
+
+
+@pytest.fixture(scope="module")
+def full():
+    full = load_full()
+    if full is None:
+        pytest.skip("the full study is not in this checkout")
+    return full
+
+
+@pytest.fixture(scope="module")
+def info(full):
+    info = inf.load_information()
+    if info is None:
+        pytest.skip("the stored study under noise is not in this checkout")
+    return info
+
+
+@pytest.fixture(scope="module")
+def adapt(full):
+    res = ar.load_adaptive()
+    if res is None:
+        pytest.skip("the stored adaptive rung is not in this checkout")
+    return res
+
+
+def test_the_noise_study_was_computed_on_the_stored_study(info, full):
+    assert info["stored_study"] == {"commit": full["commit"], "fingerprint": full["fingerprint"]}
+    assert info["levels"] == [inf._key(v) for v in inf.LEVELS]
+    for e in EXAMPLES:
+        assert info[e]["test_indices"] == full[e]["test_indices"][:info["n_test"]]
+
+
+@pytest.mark.parametrize("e", EXAMPLES)
+def test_no_rung_passes_the_limit_and_noise_only_costs(info, full, e):
+    pos = {i: k for k, i in enumerate(full[e]["test_indices"])}
+    for key in info["levels"]:
+        row = info[e][key]
+        lim = np.asarray(row["energies"]["limit"])
+        for rung, v in row["energies"].items():
+            assert len(v) == info["n_test"]
+            assert np.all(np.asarray(v) >= lim * (1 - 1e-9)), (key, rung)
+        # the stored x-only controller does not read ŵ: the noise does not reach it
+        assert row["energies"]["best fixed (x)"] == [full[e]["fixed_energy"][row["best_x"]][pos[i]]
+                                                     for i in info[e]["test_indices"]]
+        # a fixed controller reading noisy ŵ has at least its exact energy on d
+        if row["best"] in full[e]["fixed_energy"]:
+            clean = np.array([full[e]["fixed_energy"][row["best"]][pos[i]] for i in info[e]["test_indices"]])
+            assert np.all(np.asarray(row["energies"]["best fixed (x, ŵ)"]) >= clean * (1 - 1e-12))
+        # the chosen controller has the least expected power of those recorded
+        p = row["expected_power"]
+        assert p[row["best"]] <= p["optimal LTI in noise"] * (1 + 1e-12)
+
+
+def test_the_noise_raises_the_best_fixed_controllers_expected_power(info):
+    for e in EXAMPLES:
+        powers = [info[e][k]["expected_power"][info[e][k]["best"]] for k in info["levels"]]
+        assert all(a <= b * (1 + 1e-9) for a, b in zip(powers, powers[1:], strict=False))
+
+
+def test_the_fixed_part_recomputes_at_20_db(info, full):
+    # the redesign, the choice, and the chosen controller's energy (exact plus the noise's
+    # expected cost) on the first stored draw of the generic example
+    row = info["generic"]["20 dB"]
+    dz = inf.level_design("generic", 20.0, full)
+    assert dz["best"] == row["best"]
+    assert dz["optimal"].power == pytest.approx(row["expected_power"]["optimal LTI in noise"], rel=1e-6)
+    i = info["generic"]["test_indices"][0]
+    clean = (inf._fixed_energy("generic", i, info["seed"], dz["optimal"].controller)
+             if dz["best"] == "optimal LTI in noise"
+             else full["generic"]["fixed_energy"][dz["best"]][full["generic"]["test_indices"].index(i)])
+    want = clean + info["generic"]["horizons"][0] * dz["noise"][dz["best"]]
+    assert row["energies"]["best fixed (x, ŵ)"][0] == pytest.approx(want, rel=1e-6)
+
+
+def test_the_summaries_read_the_stored_energies(info):
+    for e in EXAMPLES:
+        rows = inf.summary(info, e)
+        assert [r["level"] for r in rows] == info["levels"]
+        for r in rows:
+            assert r[r["reference"]][:3] == (1.0, 1.0, 1.0)
+            row = info[e][r["level"]]
+            ratio = np.asarray(row["energies"]["predictive (confident)"]) / np.asarray(
+                row["energies"][r["reference"]])
+            assert r["predictive (confident)"][0] == pytest.approx(float(np.median(ratio)), rel=1e-12)
+        assert {r["scale"] for r in inf.model_error_summary(info, e)} == set(inf.SCALES)
+
+
+def test_the_adaptive_rung_chose_its_setting_on_training_draws(adapt, full):
+    assert adapt["stored_study"] == {"commit": full["commit"], "fingerprint": full["fingerprint"]}
+    for e in EXAMPLES:
+        r = adapt[e]
+        best = min(r["train_scores"], key=r["train_scores"].get)
+        assert best == "/".join(f"{v:g}" for v in r["setting"])
+        n = len(r["test_indices"])
+        assert r["reference_energies"] == full[e]["ladder"]["energies"]["best fixed (x, ŵ)"][:n]
+        assert all(math.isfinite(x) for x in r["energies"])
+        assert np.all(np.asarray(r["energies"]) >= np.asarray(r["limit_energies"]) * (1 - 1e-9))
+        s = ar.summary(adapt, e)
+        assert s["limit"][0] < 1.0 and set(s) == {"adaptive", "predictive", "limit"}
