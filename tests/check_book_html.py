@@ -216,6 +216,11 @@ class _Collector(HTMLParser):
         return " ".join(self._code)
 
 
+#: A MyST role left as source in the visible text (glued Markdown is not parsed as MyST, so a role
+#: in it reaches the reader as ``{term}name``).
+RAW_ROLE = re.compile(r"\{(?:term|doc|cite|ref|numref|eq|glue:text|glue:md|py:[a-z]+)\}")
+
+
 def visible_text(html):
     """Text of an HTML page that a reader sees as prose (see the module docstring).
 
@@ -511,6 +516,8 @@ def check(root):
         if page.name not in GENERATED_PAGES:
             problems += [f"{page.name}: Theorem 1's LMIs called a certificate: '{s}'"
                          for s in theorem1_certified(c.text)[:MAX_TEX_REPORTS]]
+        problems += [f"{page.name}: a MyST role reached the reader as source: '{m.group(0)}'"
+                     for m in list(RAW_ROLE.finditer(c.text))[:MAX_TEX_REPORTS]]
         tex = raw_tex_snippets(c.text)
         problems += [f"{page.name}: raw TeX in visible text: '{s}'" for s in tex[:MAX_TEX_REPORTS]]
         if len(tex) > MAX_TEX_REPORTS:

@@ -250,3 +250,12 @@ def test_errata_count_top_level_items_and_terms_count_only_the_article(tmp_path)
     # indices Sphinx generates list code names and terms by design
     write(tmp_path, "genindex.html", "<p>alpha_lf_in_hf (PiecewiseDominance property) non-causal limit</p>")
     assert not [p for p in check(tmp_path) if p.startswith("genindex.html")]
+
+
+def test_a_myst_role_left_in_glued_markdown_is_reported(tmp_path):
+    # glued Markdown is not parsed as MyST: a role in it reaches the reader as source
+    write(tmp_path, "page.html", "<p>It is the {term}<code>optimal LTI controller</code> of the class, "
+          "see {doc}<code>ladder</code>.</p><p>Sets {1, 2} and f{x} are fine.</p>")
+    found = check(tmp_path)
+    assert found == ["page.html: a MyST role reached the reader as source: '{term}'",
+                     "page.html: a MyST role reached the reader as source: '{doc}'"]

@@ -69,28 +69,37 @@ def test_the_noise_loop_of_a_static_feedforward_is_the_plant_driven_through_b2()
         noise_loop(PLANT, Controller(np.zeros((0, 0)), np.zeros((0, 2)), np.zeros((1, 0)), K))
 
 
-def test_without_noise_the_design_is_the_optimal_lti_controller():
-    quiet = optimal_lti_in_noise(PLANT, CLS, 0.0, NYQ)
+@pytest.fixture(scope="module")
+def designs():
+    """The optimal LTI controller and the redesign without noise, at 20 dB and at −60 dB (one
+    band, so that the class's spectrum, the costly part, is quick)."""
+    cls = SegmentClass([(10.0, 30.0)], [1.0])
+    out = {"cls": cls, "clean": optimal_lti(PLANT, cls)}
+    for snr in (math.inf, 20.0, -60.0):
+        S = noise_density(cls.power, snr, NYQ)
+        out[snr] = (S, optimal_lti_in_noise(PLANT, cls, S, NYQ))
+    return out
+
+
+def test_without_noise_the_design_is_the_optimal_lti_controller(designs):
+    _S, quiet = designs[math.inf]
     assert quiet.noise_power == 0.0
-    assert quiet.power == pytest.approx(optimal_lti(PLANT, CLS).power, rel=5e-3)
+    assert quiet.power == pytest.approx(designs["clean"].power, rel=5e-3)
 
 
-def test_the_redesign_beats_the_noise_free_optimum_under_noise_and_tends_to_ignoring_w():
-    clean = optimal_lti(PLANT, CLS).controller
-    powers = []
-    for snr in (20.0, 0.0, -60.0):
-        S = noise_density(CLS.power, snr, NYQ)
-        res = optimal_lti_in_noise(PLANT, CLS, S, NYQ)
+def test_the_redesign_beats_the_noise_free_optimum_under_noise_and_tends_to_ignoring_w(designs):
+    cls, clean = designs["cls"], designs["clean"].controller
+    for snr in (20.0, -60.0):
+        S, res = designs[snr]
         assert res.power == pytest.approx(res.signal_power + res.noise_power, rel=1e-12)
         # the design counted the noise, the clean optimum did not: under the noise it is no worse
-        clean_total = (expected_power(PLANT.closed_loop(clean), CLS)
+        clean_total = (expected_power(PLANT.closed_loop(clean), cls)
                        + noise_power(noise_loop(PLANT, clean), S, NYQ))
         assert res.power <= clean_total * (1 + 5e-3)
-        powers.append(res.power)
-    assert powers[0] < powers[1] < powers[2]
+    assert designs[math.inf][1].power < designs[20.0][1].power < designs[-60.0][1].power
     # with overwhelming noise, Q → 0: the LQ gain alone
-    lq = expected_power(PLANT.closed_loop(clean.D), CLS)
-    assert powers[2] == pytest.approx(lq, rel=1e-2)
+    lq = expected_power(PLANT.closed_loop(clean.D), cls)
+    assert designs[-60.0][1].power == pytest.approx(lq, rel=1e-2)
 
 
 @pytest.mark.parametrize("kw, exc, match", [

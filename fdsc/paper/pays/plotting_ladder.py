@@ -178,7 +178,8 @@ def plot_noise_levels(rows: list, ax=None, *, title=None, legend=True):
     ax.set_xticks(x, [r["level"] for r in rows])
     ax.set_xlabel("white noise on what the controllers sample (signal-to-noise ratio)")
     ax.set_ylabel("energy / best fixed at this noise")
-    ticks = [0.7, 0.8, 0.9, 1.0, 1.1, 1.2, 1.3]
+    low = min(min(r[rung][1] for rung in NOISE_RUNGS if rung in r) for r in rows)
+    ticks = [t for t in (0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.1, 1.2, 1.3) if t >= low * 0.95]
     ax.set_yticks(ticks, [f"{t:g}" for t in ticks])
     ax.minorticks_off()
     if title:
