@@ -48,7 +48,7 @@ def test_the_figure_draws_a_rung_beyond_its_axis_at_the_edge_with_its_median():
     fig, ax = plt.subplots()
     plot_ladder(summary, ax)
     texts = [t.get_text() for t in ax.texts]
-    assert "×53" in texts and "×0.700" in texts
+    assert "×53.0" in texts and "×0.700" in texts   # as the prose writes them
     lo, hi = ax.get_xlim()
     assert lo < 0.68 and 1.0 < hi <= 2.0              # the axis holds the intervals below ×2 and ×1
     plt.close(fig)

@@ -282,7 +282,7 @@ def test_a_malformed_record_is_refused(rec, message):
 def test_html_table_escapes_all_but_the_raw_columns():
     rows = figure_rows(record())
     table = html_table(rows, {"figure": "paper figure", "link": "page"}, raw={"link"})
-    assert '<td><a href="stationary.html">stationary</a></td>' in table
+    assert '<td><a href="simulations.html">simulations</a></td>' in table
     escaped = html_table(rows, {"link": "page"})
     assert "&lt;a href=" in escaped and "<a href" not in escaped
     with pytest.raises(ValueError, match=r"raw must name columns \['link'\], but found \['page'\]"):
@@ -341,3 +341,17 @@ def test_the_law_rows_carry_an_interval_where_the_per_draw_ratios_are_stored():
     bare = {k: v for k, v in one.items() if k not in ("ratio_vs_fixed_in_advance", "reference_ratio")}
     rec = {"entries": [{"id": "supervisor", "verdict": "new", "recomputed": {"aircraft": bare}}]}
     assert [r["median"] for r in law_rows(rec)] == ["×1.00"]
+
+
+def test_the_papers_best_hf_sentence_is_an_erratum_when_kf3_has_the_largest_hf_peak():
+    from fdsc.paper.appendix.report_further import further_findings
+
+    peaks = {"K_f1": 0.4089, "K_f2": 0.4028, "K_f3": 1.605, "K_e": 0.4028}
+    entry = {"id": "sigma_peak", "source": "s", "paper": None, "verdict": "new", "note": "n",
+             "recomputed": {k: {"LF": 1.0, "HF": v} for k, v in peaks.items()}}
+    [row] = further_findings({"entries": [entry]})
+    assert row["where"] == "Sec. IV, text on paper Fig. 3"
+    assert "band peak over the HF range is 1.605, the worst of the four printed gains" in row["what"]
+    assert "(the others 0.4028 to 0.4089)" in row["what"]
+    entry["recomputed"]["K_f3"]["HF"] = 0.405      # between the others: not the best, not the worst
+    assert "not the best of the four" in further_findings({"entries": [entry]})[0]["what"]

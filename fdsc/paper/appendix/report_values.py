@@ -18,7 +18,8 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["words", "key_words", "details", "note_html", "value_html", "number_text", "page_titles"]
+__all__ = ["words", "key_words", "details", "note_html", "value_html", "number_text", "page_titles",
+           "readable_numbers"]
 
 _GREEK = {"rho": "ρ", "omega": "ω", "Omega": "Ω", "gamma": "γ", "delta": "δ", "alpha": "α",
           "beta": "β", "sigma": "σ", "epsilon": "ε", "tau": "τ", "Psi": "Ψ", "lambda": "λ"}
@@ -31,7 +32,8 @@ NOTE_SHOWN = 160
 
 def words(text):
     """Text with the ASCII names of Greek letters as letters, ``<=``, ``>=`` as ``≤``, ``≥``,
-    ``H-infinity`` as ``H∞`` and ``xdot`` as ``ẋ``.
+    ``H-infinity`` as ``H∞``, ``xdot`` as ``ẋ`` and its numbers as the prose writes them
+    (:func:`readable_numbers`).
 
     Parameters
     ----------
@@ -52,7 +54,7 @@ def words(text):
     text = _GREEK_NAME.sub(lambda m: _GREEK[m.group(1)], str(text))
     text = re.sub(r"(\d) ([δ])", r"\1\2", text)
     text = re.sub(r"(?<![A-Za-z])xdot(?![A-Za-z])", "ẋ", text.replace("H-infinity", "H∞"))
-    return text.replace("<=", "≤").replace(">=", "≥")
+    return readable_numbers(text.replace("<=", "≤").replace(">=", "≥"))
 
 
 def key_words(key):
@@ -94,6 +96,33 @@ def details(summary, body):
     return f"<details><summary>{summary}</summary>{body}</details>"
 
 
+_E_NUMBER = re.compile(r"(?<![\w.])(-?\d+(?:\.\d+)?)[eE]([-+]?\d+)(?!\w|\.\d)")
+_LONG_INTEGER = re.compile(r"(?<![\w.,/#-])\d{5,}(?![\w,/])(?!\.\d)")
+
+
+def readable_numbers(text):
+    """Text with its numbers as the prose writes them: e-notation as ``m × 10ⁿ``, integers of
+    five or more digits with thousands separators.
+
+    Parameters
+    ----------
+    text : str
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> readable_numbers("passes 1e6 at 2.88e+06, after 196254 steps in 2023, doi 10.5281/zenodo.7990805")
+    'passes 1 × 10⁶ at 2.88 × 10⁶, after 196,254 steps in 2023, doi 10.5281/zenodo.7990805'
+    >>> readable_numbers("PassC-HF 6.27e+03.")
+    'PassC-HF 6.27 × 10³.'
+    """
+    text = _E_NUMBER.sub(lambda m: f"{m.group(1)} × 10{str(int(m.group(2))).translate(_SUPERSCRIPT)}", text)
+    return _LONG_INTEGER.sub(lambda m: f"{int(m.group(0)):,}", text)
+
+
 def note_html(note, shown=NOTE_SHOWN):
     """A note in words: whole if short, else its first sentence with the rest folded.
 
@@ -111,6 +140,8 @@ def note_html(note, shown=NOTE_SHOWN):
     --------
     >>> note_html("short; rho_p")
     'short; ρ_p'
+    >>> note_html("width <= 1e-3 after 196254 steps")
+    'width ≤ 1 × 10⁻³ after 196,254 steps'
     >>> note_html("First part here. " + "x" * 200).startswith("<details><summary>First part here. …")
     True
     """
@@ -121,6 +152,9 @@ def note_html(note, shown=NOTE_SHOWN):
     head, rest = (text[:cut.start() + 1], text[cut.end():]) if cut and cut.start() < 2 * shown else (
         text[:shown].rsplit(" ", 1)[0], text[len(text[:shown].rsplit(" ", 1)[0]):].lstrip())
     return details(f"{html.escape(head)} …", f"<p>{html.escape(rest)}</p>")
+
+
+_SUPERSCRIPT = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
 
 
 def number_text(x, digits=None):
@@ -140,6 +174,8 @@ def number_text(x, digits=None):
     --------
     >>> number_text(15.0897), number_text(0.104946831, 4), number_text(1.0), number_text(None)
     ('15.0897', '0.1049', '1', '—')
+    >>> number_text(1.0735e-08), number_text(-2876000.0, 4), number_text(855900)
+    ('1.0735 × 10⁻⁸', '−2.876 × 10⁶', '855,900')
     """
     if x is None:
         return "—"
@@ -149,6 +185,14 @@ def number_text(x, digits=None):
     if not math.isfinite(v):
         return "∞" if v > 0 else ("−∞" if v < 0 else "n/a")
     text = format(v, f".{digits or 10}g")
+    if "e" in text:   # as the prose writes it, never e-notation
+        mantissa, exponent = text.split("e")
+        text = f"{mantissa} × 10{str(int(exponent)).translate(_SUPERSCRIPT)}"
+    else:             # thousands separators on five or more digits
+        whole, dot, frac = text.partition(".")
+        if len(whole.lstrip("-")) >= 5:
+            whole = f"{int(whole):,}"
+        text = whole + dot + frac
     return text.replace("-", "−")
 
 

@@ -448,8 +448,8 @@ def _bound_words(e):
 
 def _table1_words(e):
     off = [k for k, v in e["recomputed"].items() if isinstance(v, dict) and v.get("verdict") == "differs"]
-    return (f"the trends of the time shares ({', '.join(off)}) are not monotone in the simulations, as "
-            "the table says; its steady-state rows hold")
+    return (f"the time shares ({', '.join(off)}) do not follow in the simulations the monotone trends "
+            "the table prints; its steady-state rows hold")
 
 
 #: One line per erratum of the paper: what is wrong, its numbers read from the record entry.

@@ -5,6 +5,7 @@ import math
 import numpy as np
 
 from fdsc.paper.shared.plotting import _axes
+from fdsc.paper.shared.prose import times
 
 __all__ = ["KIND", "KIND_STYLE", "SHORT", "plot_ladder", "plot_excess_by_time", "plot_noise_levels",
            "NOISE_RUNGS"]
@@ -65,12 +66,12 @@ def plot_ladder(summary: dict, ax=None, *, xlim=None, words=None, legend=True):
             edge = hi if m > hi else lo
             ax.annotate("", xy=(edge, y), xytext=(edge / 1.12 if m > hi else edge * 1.12, y),
                         arrowprops={"arrowstyle": "->", "color": color, "lw": 1.5})
-            ax.text(edge / 1.14 if m > hi else edge * 1.14, y, f"×{m:.3g}",
+            ax.text(edge / 1.14 if m > hi else edge * 1.14, y, times(m),
                     ha="right" if m > hi else "left", va="center", fontsize=8.5, color=color)
             continue
         ax.plot([max(a, lo), min(b, hi)], [y, y], color=color, lw=2.5, alpha=0.6, solid_capstyle="butt")
         ax.plot(m, y, marker=marker, color=color, ms=7, ls="none")
-        ax.text(min(b, hi) * 1.02, y, f"×{m:.3f}", va="center", fontsize=8.5, color=color)
+        ax.text(min(b, hi) * 1.02, y, times(m), va="center", fontsize=8.5, color=color)  # as the prose
     ax.axvline(1.0, color="k", lw=0.8)
     ax.set_xscale("log")
     ax.set_xlim(lo, hi)

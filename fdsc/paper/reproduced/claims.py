@@ -206,9 +206,9 @@ def sweep_claims(study: SweepStudy, *, half: bool = False) -> list:
     peak_hf = float(e["PassC-HF"].max())
     rows.append(ClaimRow(
         "the energy of PassC-HF has reached 10⁶", src7,
-        "largest ∫zᵀz of PassC-HF over the ρ_p grid; PASS if in [1e6, 1e7)", peak_hf,
+        "largest ∫zᵀz of PassC-HF over the ρ_p grid; PASS if in [10⁶, 10⁷)", peak_hf,
         "PASS" if 1e6 <= peak_hf < 1e7 else "FAIL",
-        f"{peak_hf:.3g} at ρ_p = {rho[np.argmax(e['PassC-HF'])]:g}; it passes 1e6 from ρ_p = "
+        f"{peak_hf:.3g} at ρ_p = {rho[np.argmax(e['PassC-HF'])]:g}; it passes 10⁶ from ρ_p = "
         f"{rho[np.argmax(e['PassC-HF'] >= 1e6)]:g}" if peak_hf >= 1e6 else f"{peak_hf:.3g}"))
     k = 1  # the smallest ρ_p > 0 on the grid
     sens = float(e["PassC-HF"][k] / best[k])
@@ -336,7 +336,7 @@ def _summary_claims(sweep_rows, lf, hf, study):
     p2 = by_claim["Sec. II-C, objective (P.2)"]
     # in band, the long-run ratio of the (P.1) row (second half of the runs): over the whole run
     # from rest FDSC's energy is below PassC-HF's only because PassC-HF's slow pole still
-    # carries its start-up transient (chapter 'stationary'), an advantage of the horizon
+    # carries its start-up transient (chapter 'simulations'), an advantage of the horizon
     in_band = by_claim["Sec. II-C, objective (P.1)"].value["FDSC / PassC-HF at α = 1"] ** 2
     in_band_run = hf.energy["FDSC"] / hf.energy["PassC-HF"]
     out_ratio = lf.energy["FDSC"] / lf.energy["PassC-LF"]
