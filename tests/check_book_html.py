@@ -38,9 +38,11 @@ the text a browser shows once MathJax has run.
 
 Readers' pages
 --------------
-The landing page (:data:`ROOT_PAGE`) must open with a section "Replication summary" of at most
-:data:`MAX_SUMMARY_WORDS` words of visible text (up to the reading paths), and its list of errata
-must have as many items as the report's (:data:`REPORT_PAGE`). Every page that uses a term of
+The landing page (:data:`ROOT_PAGE`) must open with the section "Does FDSC work, and when?" and
+hold at most :data:`MAX_ROOT_WORDS` words of visible text; its short list of errata must have as
+many items as the report's (:data:`REPORT_PAGE`), each linked to its item there. No page's prose
+shows the machinery (:func:`leaks`: e-notation, integers of five or more digits without
+separators, dictionary keys, notebook file names) or an empty heading (:func:`empty_headings`). Every page that uses a term of
 :data:`LINKED_TERMS` links it to the glossary at least once. No sentence calls Theorem 1's LMIs a
 certificate (:func:`theorem1_certified`): their feasibility certifies nothing (they hold for every
 Hurwitz pair). No page's visible text may speak to the project
@@ -59,17 +61,18 @@ from pathlib import Path
 from urllib.parse import unquote, urlparse
 
 __all__ = ["check", "visible_text", "raw_tex_snippets", "code_share", "project_speak", "unlinked_terms",
-           "theorem1_certified"]
+           "theorem1_certified", "leaks", "empty_headings"]
 
 #: Chapters and the least number of figures each must show.
 MIN_IMAGES = {"frequency_ranges.html": 3, "gkyp_lemma.html": 1, "passive_controllers.html": 3,
               "frequency_selective.html": 3, "theorem1.html": 1, "switching_law.html": 2,
-              "stationary.html": 4}
+              "simulations.html": 4}
 #: Raw-TeX findings reported per page (the rest are counted).
 MAX_TEX_REPORTS = 3
-#: The landing page, its heading and its length in words of visible text.
+#: The landing page, its first heading (the answer comes first) and its length in words of visible text.
 ROOT_PAGE = "intro.html"
-FINDINGS_HEADING = "Replication summary"
+FINDINGS_HEADING = "Does FDSC work, and when?"
+MAX_ROOT_WORDS = 1200
 #: Largest share of a page's words that may be visible code, and the pages exempt: the own-plant
 #: chapter is the library's worked example, whose code is what the reader came for.
 MAX_CODE_SHARE = 0.15
@@ -119,14 +122,11 @@ REPORT_PAGE = "report.html"
 UNLINKED_OK_PAGES = {"genindex.html", "py-modindex.html", "search.html", "changelog.html"}
 #: Pages Sphinx generates, where code names are the content.
 GENERATED_PAGES = {"genindex.html", "py-modindex.html", "search.html"}
-#: The landing page's summary: at most this many words from its heading to the reading paths.
-MAX_SUMMARY_WORDS = 1500
 #: The report: at most this many words of prose outside folded blocks, tables of at most
 #: MAX_TABLE_COLUMNS columns whose cells show at most MAX_CELL_CHARS characters unfolded.
 MAX_REPORT_WORDS = 5000
 MAX_TABLE_COLUMNS = 8
 MAX_CELL_CHARS = 300
-SUMMARY_END = "Reading paths"
 #: Pages whose tables list the record's ids by design.
 _ID_PAGES = {"report.html"}
 
@@ -329,6 +329,83 @@ def project_speak(text, page=""):
     return found
 
 
+#: Leaks of the machinery into the reader's text (item: what, pattern); the API reference, the
+#: generated pages and the references (page and volume numbers) are not held to them.
+LEAKS = (
+    ("e-notation", re.compile(r"(?<![\w.])(?<!commit )\d+(?:\.\d+)?[eE][-+\u2212]?\d+(?!\w|\.\d)")),
+    ("an integer of five or more digits without separators",
+     re.compile(r"(?<![\w.,/:#\u2212-])(?<!commit )\d{5,}(?![\w,/])(?!\.\d)")),
+    ("dictionary keys", re.compile(r"(?<![\w)])[A-Za-z_][\w ]{0,11}: [A-Za-z_]\w{0,11}: [-\u2212\d]")),
+)
+#: Pages exempt from :data:`LEAKS`.
+LEAK_FREE_PAGES = GENERATED_PAGES | {"references.html"}
+_HEADING = re.compile(r"<h([1-6])\b[^>]*>(.*?)</h\1>", flags=re.S)
+_EMPTY_SECTION = re.compile(r"<section\b[^>]*>\s*<h([1-6])\b[^>]*>(.*?)</h\1>\s*</section>", flags=re.S)
+
+
+def leaks(text, page="", stems=()):
+    """``[(what, snippet)]``: machinery in a page's visible text (:data:`LEAKS`), and the file
+    names of notebooks (``stems`` with an underscore) used as names of chapters.
+
+    Parameters
+    ----------
+    text : str
+        Visible text of a page.
+    page : str, optional
+        The page's file name (:data:`LEAK_FREE_PAGES` are exempt).
+    stems : iterable of str, optional
+        The book's notebook file names without suffix.
+
+    Returns
+    -------
+    list of tuple
+
+    Examples
+    --------
+    >>> [w for w, _ in leaks("gamma^2 = 9.932e+05. After 196254 steps, see wellposed_laws",
+    ...                      stems=["wellposed_laws"])]
+    ['e-notation', 'an integer of five or more digits without separators', 'a notebook file name']
+    >>> leaks("196,254 steps in 2023 at commit 0394711 (or commit 6e88619), doi 10.5281/zenodo.7990805, 1.5 s")
+    []
+    """
+    if page in LEAK_FREE_PAGES:
+        return []
+    found = []
+    for what, pattern in LEAKS:
+        for m in pattern.finditer(text):
+            window = text[max(0, m.start() - _CONTEXT):m.end() + _CONTEXT]
+            found.append((what, " ".join(window.split())))
+    for stem in stems:
+        if "_" in stem:
+            for m in re.finditer(rf"(?<![\w/.-]){re.escape(stem)}(?![\w])", text):
+                window = text[max(0, m.start() - _CONTEXT):m.end() + _CONTEXT]
+                found.append(("a notebook file name", " ".join(window.split())))
+    return found
+
+
+def empty_headings(html):
+    """Headings of ``html`` without text (their permalink apart) and sections holding nothing but
+    their heading.
+
+    Returns
+    -------
+    list of str
+        The headings' text ('' for one without text).
+
+    Examples
+    --------
+    >>> empty_headings('<section><h2>A<a class="headerlink">#</a></h2></section><h3> </h3>')
+    ['A', '']
+    """
+    out = []
+    for m in _HEADING.finditer(html):
+        if not " ".join(visible_text(re.sub(r'<a class="headerlink".*?</a>', "", m.group(2))).split()):
+            out.append("")
+    for m in _EMPTY_SECTION.finditer(html):
+        out.insert(0, " ".join(visible_text(re.sub(r'<a class="headerlink".*?</a>', "", m.group(2))).split()))
+    return out
+
+
 def article(html):
     """The page's article (``<article>…</article>``: without the navigation, whose chapter titles
     are not the page's prose); the whole page if it has none."""
@@ -412,12 +489,18 @@ def _errata_problems(root, page):
         return [f"{REPORT_PAGE}: no list of errata"]
     n_report = _top_items(m.group(1))
     html = page.read_text(encoding="utf-8")
-    at = html.find("Errata.")
-    m2 = re.search(r"<ol\b[^>]*>(.*?)</ol>", html[at:], flags=re.S) if at >= 0 else None
+    m2 = re.search(r"<ol class=.errata-short.>(.*?)</ol>", html, flags=re.S)
     n_here = _top_items(m2.group(1)) if m2 else 0
     if n_here != n_report:
         return [f"{page.name}: {n_here} errata, the report lists {n_report}"]
-    return []
+    # each item links to its explanation in the report
+    ids = set(re.findall(r"<li id=.(erratum-\d+).", rep))
+    targets = re.findall(rf"{re.escape(REPORT_PAGE)}#(erratum-\d+)", m2.group(1)) if m2 else []
+    out = [f"{page.name}: the errata link to {REPORT_PAGE}#{t}, which has no such item" for t in targets
+           if t not in ids]
+    if len(targets) != n_here:
+        out.append(f"{page.name}: {n_here - len(targets)} errata do not link to their item in {REPORT_PAGE}")
+    return out
 
 
 _DETAILS = re.compile(r"<details\b.*?</details>", flags=re.S)
@@ -457,6 +540,9 @@ def table_problems(html):
 def check(root):
     root = Path(root)
     problems = []
+    # the notebooks' file names, from the book's sources beside the build (none when built elsewhere)
+    book = root.parent.parent
+    stems = sorted(p.stem for p in book.glob("*.ipynb")) if root.parent.name == "_build" else []
     for page in sorted(root.glob("*.html")):
         c = _Collector()
         c.feed(page.read_text(encoding="utf-8"))
@@ -493,14 +579,19 @@ def check(root):
         if page.name not in GENERATED_PAGES:
             problems += [f"{page.name}: {what} in the prose: '{snippet}'"
                          for what, snippet in project_speak(c.text, page.name)[:MAX_TEX_REPORTS]]
+            body = article(page.read_text(encoding="utf-8"))
+            problems += [f"{page.name}: {what} in the prose: '{snippet}'"
+                         for what, snippet in leaks(visible_text(body), page.name, stems)[:MAX_TEX_REPORTS]]
+            problems += [f"{page.name}: an empty heading or section: '{h}'" for h in empty_headings(body)]
         if page.name == ROOT_PAGE:
-            if FINDINGS_HEADING not in c.text:
-                problems.append(f"{page.name}: no section '{FINDINGS_HEADING}'")
-            else:
-                summary = c.text.split(FINDINGS_HEADING, 1)[1].split(SUMMARY_END, 1)[0]
-                if len(summary.split()) > MAX_SUMMARY_WORDS:
-                    problems.append(f"{page.name}: the summary has {len(summary.split())} words of visible "
-                                    f"text, at most {MAX_SUMMARY_WORDS}")
+            body = article(page.read_text(encoding="utf-8"))
+            headings = [" ".join(visible_text(re.sub(r'<a class="headerlink".*?</a>', "", m.group(2))).split())
+                        for m in _HEADING.finditer(body) if m.group(1) == "2"]
+            if not headings or headings[0] != FINDINGS_HEADING:
+                problems.append(f"{page.name}: its first section is not '{FINDINGS_HEADING}'")
+            n = len(visible_text(body).split())
+            if n > MAX_ROOT_WORDS:
+                problems.append(f"{page.name}: {n} words of visible text, at most {MAX_ROOT_WORDS}")
             problems += _errata_problems(root, page)
         if page.name == REPORT_PAGE:
             html = page.read_text(encoding="utf-8")

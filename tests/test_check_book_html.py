@@ -175,26 +175,26 @@ def test_project_speak_is_reported_with_what_it_is():
 def test_readers_pages_are_checked_in_the_build(tmp_path):
     shutil.copy(READERS_PAGE, tmp_path / "stationary.html")
     words = " ".join(["word"] * 1600)
-    write(tmp_path, "intro.html", f"<h1>Title</h1><h2>Replication summary</h2><p>{words}</p>"
-                                  "<h2>Reading paths</h2>")
+    write(tmp_path, "intro.html", f"<article><h1>Title</h1><h2>Does FDSC work, and when?</h2><p>{words}</p>"
+                                  "<h2>The book</h2></article>")
     write(tmp_path, "own_plant.html",
           '<div class="cell_input"><pre>' + "x = 1\n" * 50 + "</pre></div><p>a</p>")
     found = "\n".join(check(tmp_path))
     assert "stationary.html: visible code is" in found
     assert "stationary.html: an issue number in the prose" in found
-    assert "intro.html: the summary has 1600 words of visible text" in found
+    assert "intro.html: 1608 words of visible text, at most 1200" in found
     assert "own_plant.html" not in found          # the worked example may show its code
-    write(tmp_path, "intro.html", "<h1>Title</h1><p>No answer here.</p>")
+    write(tmp_path, "intro.html", "<h1>Title</h1><h2>Reading paths</h2><h2>Does FDSC work, and when?</h2>")
     found = "\n".join(check(tmp_path))
-    assert "intro.html: no section 'Replication summary'" in found
+    assert "intro.html: its first section is not 'Does FDSC work, and when?'" in found
 
 
 def test_the_consistency_checks_find_their_defects(tmp_path):
     from check_book_html import theorem1_certified, unlinked_terms
 
     write(tmp_path, "report.html", "<ol class='errata'><li>a</li><li>b</li></ol>")
-    write(tmp_path, "intro.html", "<h2>Replication summary</h2><p>Errata.</p><ol><li>a</li></ol>"
-                                  "<h2>Reading paths</h2><p>the fixed controller chosen in advance</p>"
+    write(tmp_path, "intro.html", "<h2>Does FDSC work, and when?</h2><ol class='errata-short'><li>a</li></ol>"
+                                  "<h2>The book</h2><p>the fixed controller chosen in advance</p>"
                                   "<p>(True, 3) and ['pc_pb_n_close', 'pc_x']</p>")
     found = "\n".join(check(tmp_path))
     assert "intro.html: 1 errata, the report lists 2" in found
@@ -232,13 +232,17 @@ def test_the_report_is_short_and_its_tables_narrow_unless_folded(tmp_path):
 
 def test_errata_count_top_level_items_and_terms_count_only_the_article(tmp_path):
     # the report's items carry nested lists (the printed values); the landing page's list is flat
-    write(tmp_path, "report.html", "<ol class='errata'><li>a <ul class='kv'><li>LF</li><li>HF</li></ul></li>"
-                                   "<li>b</li></ol>")
-    write(tmp_path, "intro.html", "<h2>Replication summary</h2><p>Errata.</p><ol><li>a</li><li>b</li></ol>"
-                                  "<h2>Reading paths</h2>")
+    write(tmp_path, "report.html", "<ol class='errata'><li id='erratum-1'>a <ul class='kv'><li>LF</li><li>HF</li>"
+                                   "</ul></li><li id='erratum-2'>b</li></ol>")
+    items = "".join(f"<li>{k} (<a href='report.html#erratum-{k}'>why</a>)</li>" for k in (1, 2))
+    write(tmp_path, "intro.html", f"<h2>Does FDSC work, and when?</h2><ol class='errata-short'>{items}</ol>")
     assert not [p for p in check(tmp_path) if "errata" in p]
-    write(tmp_path, "intro.html", "<h2>Replication summary</h2><p>Errata.</p><ol><li>a</li></ol>"
-                                  "<h2>Reading paths</h2>")
+    write(tmp_path, "intro.html", "<h2>Does FDSC work, and when?</h2><ol class='errata-short'>"
+                                  "<li>a (<a href='report.html#erratum-3'>why</a>)</li><li>b</li></ol>")
+    found = "\n".join(check(tmp_path))
+    assert "intro.html: the errata link to report.html#erratum-3, which has no such item" in found
+    assert "intro.html: 1 errata do not link to their item in report.html" in found
+    write(tmp_path, "intro.html", "<h2>Does FDSC work, and when?</h2><ol class='errata-short'><li>a</li></ol>")
     assert "intro.html: 1 errata, the report lists 2" in "\n".join(check(tmp_path))
     # a chapter title in the navigation is not the page's use of a term; the article's is
     nav = "<nav><a href='#ladder'>The non-causal limit and a predictive law</a></nav>"
@@ -259,3 +263,32 @@ def test_a_myst_role_left_in_glued_markdown_is_reported(tmp_path):
     found = check(tmp_path)
     assert found == ["page.html: a MyST role reached the reader as source: '{term}'",
                      "page.html: a MyST role reached the reader as source: '{doc}'"]
+
+
+def test_leaks_and_empty_headings_are_reported_where_the_build_shows_them(tmp_path):
+    # a build folder beside its notebooks: book/_build/html, book/<stem>.ipynb
+    html = tmp_path / "book" / "_build" / "html"
+    html.mkdir(parents=True)
+    (tmp_path / "book" / "switching_law.ipynb").write_text("{}")
+    write(html, "page.html",
+          "<article><section><h2>Bounds<a class=\"headerlink\">#</a></h2></section>"
+          "<p>The least gamma squared is 9.932e+05 after 196254 steps (see switching_law).</p>"
+          "<p>LF: w_l: 1 MF: w_1: 1</p><h3><a class=\"headerlink\">#</a></h3></article>")
+    found = check(html)
+    # the first findings of a page are listed (MAX_TEX_REPORTS), each kind found by leaks()
+    assert any(p.startswith("page.html: e-notation in the prose:") and "9.932e+05" in p for p in found)
+    from check_book_html import leaks, visible_text
+    kinds = [w for w, _ in leaks(visible_text((html / "page.html").read_text()), "page.html", ["switching_law"])]
+    assert list(dict.fromkeys(kinds)) == ["e-notation", "an integer of five or more digits without separators", "dictionary keys",
+                     "a notebook file name"]
+    assert "page.html: an empty heading or section: 'Bounds'" in found
+    assert "page.html: an empty heading or section: ''" in found
+
+
+def test_numbers_written_for_readers_are_not_leaks():
+    from check_book_html import leaks
+    text = ("Over 1,337 switches in 2023, commit 0394711, doi 10.5281/zenodo.7990805, ratio ×0.933 "
+            "[0.857, 0.929]; the chapter on the switching law; 12:30; Note: the law; off the axes (above the "
+            "median): aircraft: PassC-HF; generic: open loop; off the axes: aircraft: band-power law.")
+    assert leaks(text, "page.html", ["switching_law"]) == []
+    assert leaks("9.9e+05 and 123456", "references.html") == []

@@ -9,7 +9,7 @@ modules (each at most 600 lines):
   examples and the one comparator set); it imports no part;
 * :mod:`fdsc.paper.reproduced`: Part I, *The paper, reproduced*;
 * :mod:`fdsc.paper.pays`: Part II, *Does FDSC pay?*;
-* :mod:`fdsc.paper.repairs`: Part III, *Repairs and extensions*;
+* :mod:`fdsc.paper.repairs`: the repairs and extensions (told in Part I's chapters and an appendix);
 * :mod:`fdsc.paper.appendix`: the reproduction report.
 
 A part imports the library, the shared machinery and earlier parts, never a later one. Above

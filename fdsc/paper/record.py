@@ -56,12 +56,12 @@ PAPER_FIGURES = {
     1: ("the closed loop with FDSC (block diagram)", "switching_law"),
     2: ("code and data availability box (no data)", None),
     3: ("sigma_max of the closed loops with K_f1, K_f2, K_f3, K_e", "gkyp_lemma"),
-    4: ("q, delta_E, delta_PTV under the LF disturbance, four controllers", "stationary"),
-    5: ("the same under the HF disturbance", "stationary"),
-    6: ("L2-induced norm over time under the HF disturbance", "stationary"),
-    7: ("output energy over [0, 500] against rho_p (mixed disturbance)", "nonstationary"),
+    4: ("q, delta_E, delta_PTV under the LF disturbance, four controllers", "simulations"),
+    5: ("the same under the HF disturbance", "simulations"),
+    6: ("L2-induced norm over time under the HF disturbance", "simulations"),
+    7: ("output energy over [0, 500] against rho_p (mixed disturbance)", "simulations"),
     8: ("output energy over [0, 1000 + 500 rho_t] against rho_t (piecewise disturbance)",
-        "nonstationary"),
+        "simulations"),
 }
 
 
@@ -105,8 +105,10 @@ CHAPTERS = (inputs, frequency_ranges, gkyp_lemma, passive_controllers, frequency
 
 #: The book page that computes each chapter module's entries (the report links to it); entries
 #: listed in :data:`ENTRY_PAGES` are shown on another page than their module's.
-PAGES = {"inputs": "frequency_ranges", "wellposed": "wellposed_laws", "three_mode": "three_modes",
-         "comparator_wins": "baselines"}
+PAGES = {"inputs": "frequency_ranges", "wellposed": "switching_law", "three_mode": "three_modes",
+         "theorem1_counterexamples": "theorem1", "stationary": "simulations", "nonstationary": "simulations",
+         "baselines": "simulations", "comparator_wins": "simulations", "fixed_controllers": "ladder",
+         "disturbance_law": "ladder"}
 ENTRY_PAGES = {"bound_f1": "printed_bounds", "bound_f2": "printed_bounds",
                "bound_f3": "printed_bounds", "bound_e": "printed_bounds"}
 
@@ -128,7 +130,7 @@ def entry_page(module_name, entry_id):
     Examples
     --------
     >>> entry_page("fdsc.paper.repairs.wellposed", "x")
-    'wellposed_laws'
+    'switching_law'
     >>> entry_page("fdsc.paper.reproduced.passive_controllers", "bound_e")
     'printed_bounds'
     """

@@ -30,8 +30,11 @@ BOOK = Path(__file__).resolve().parents[2] / "book"
 LEVEL = {"shared": 0, "reproduced": 1, "pays": 2, "repairs": 3, "record": 4, "appendix": 5,
          "findings": 6, "cli": 6, "__main__": 7}
 #: The book's parts (``book/_toc.yml`` captions) and the landing page, as layers.
-PART_LEVEL = {"I. The paper, reproduced": 1, "II. Does FDSC pay?": 2, "III. Repairs and extensions": 3,
-              "Appendices": 5}
+PART_LEVEL = {"I. The paper, reproduced": 1, "II. Does FDSC pay?": 2, "Appendices": 5}
+#: Chapters of Part I that also tell what the layers after it compute about the same result (the
+#: switching law with its repairs, Theorem 1 with its counterexamples, the paper's simulations with
+#: the comparators on the same cases): their layer is the highest of what they tell.
+CHAPTER_LEVEL = {"switching_law": LEVEL["repairs"], "theorem1": LEVEL["repairs"], "simulations": LEVEL["pays"]}
 
 #: The entry module of each chapter split into siblings, and the split modules of the appendix
 #: on the printed bounds and of the figures.
@@ -82,7 +85,7 @@ def _notebook_parts():
     out = {toc["root"]: 7}
     for part in toc["parts"]:
         for chapter in part["chapters"]:
-            out[chapter["file"]] = PART_LEVEL[part["caption"]]
+            out[chapter["file"]] = CHAPTER_LEVEL.get(chapter["file"], PART_LEVEL[part["caption"]])
     return out
 
 
@@ -114,7 +117,7 @@ def test_a_chapter_imports_from_its_own_part_and_earlier_ones(stem):
 
 def test_the_notebook_rule_reads_imports():
     # guards the test above against reading nothing
-    imports = _notebook_imports(BOOK / "stationary.ipynb")
+    imports = _notebook_imports(BOOK / "simulations.ipynb")
     assert "fdsc.paper.reproduced.stationary" in imports
 
 

@@ -120,4 +120,6 @@ def test_every_entry_names_the_book_page_that_computes_it():
     pages = {e["id"]: e["chapter"] for e in rec["entries"]}
     assert all((book / f"{p}.ipynb").is_file() for p in pages.values()), pages
     assert pages["bound_f3"] == "printed_bounds" and pages["K_f3"] == "passive_controllers"
-    assert pages["comparators"] == "baselines" and pages["claims_step_halving"] == "report"
+    assert pages["comparators"] == "simulations" and pages["claims_step_halving"] == "report"
+    assert pages["hysteresis_dwell"] == "switching_law" and pages["mixed_crossover"] == "simulations"
+    assert pages["fixed_controllers"] == "ladder" and pages["theorem1_counterexamples"] == "theorem1"

@@ -1,10 +1,10 @@
-"""Chapter 'baselines': does FDSC pay on the paper's aircraft? Every simulation case of the paper
+"""Chapter 'simulations': does FDSC pay on the paper's aircraft? Every simulation case of the paper
 (stationary LF and HF, the ρ_p and ρ_t families of paper Figs. 7 and 8) with the open loop, the
 paper's three fixed gains, the best certified HF design, FDSC as printed, FDSC with a minimum
 dwell time, and FDSC with the best HF design in place of K_f3 (its Q's designed by Theorem 1 /
 paper Remark 4).
 
-The runs are those of :mod:`fdsc.paper.reproduced.paper_cases` (chapters 'stationary' and
+The runs are those of :mod:`fdsc.paper.reproduced.paper_cases` (chapters 'simulations' and
 'nonstationary' set FDSC beside the same runs); this module re-exports them and adds the chapter's
 figures and its record entries.
 """

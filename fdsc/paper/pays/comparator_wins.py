@@ -1,5 +1,5 @@
 """The record's entry ``comparators``: the comparator set of each example and, for each family
-of cases, how often each member is the best (chapter 'baselines' shows it).
+of cases, how often each member is the best (chapter 'simulations' shows it).
 """
 
 import numpy as np

@@ -1,4 +1,4 @@
-"""Chapter 'disturbance_law': does a switching law that decides on the disturbance estimate pay
+"""Chapter 'ladder': does a switching law that decides on the disturbance estimate pay
 against the strongest fixed controller, and what is switching worth at all?
 
 Seeded non-stationary draws on both examples (:mod:`fdsc.paper.pays.disturbance_law_draws`): the

@@ -1,4 +1,4 @@
-"""Chapter 'fixed_controllers': the strongest fixed controllers of each example for its class of
+"""Chapter 'ladder': the strongest fixed controllers of each example for its class of
 non-stationary disturbances, and the one chosen in advance that every "does it pay" of Part II
 is judged against (the designs: :mod:`fdsc.paper.pays.fixed_designs`, re-exported here).
 """
@@ -34,7 +34,7 @@ __all__ = ["N_TUNE", "CAP_FACTOR", "FRONT_POINTS", "DYN_RATIOS", "U_PENALTY", "T
            "law_front_gains", "dynamic_front", "record_part", "N_RECORD", "family_summary", "answer",
            "N_RECHECK", "RECHECKED", "recheck_designs"]
 
-#: Draws of the record's study (the same as chapter 'disturbance_law''s record subset).
+#: Draws of the record's study (the same as chapter 'ladder''s record subset).
 N_RECORD = 12
 
 

@@ -1,4 +1,4 @@
-"""Figures of the chapters 'fixed_controllers' and 'disturbance_law' (result in, Axes out)."""
+"""Figures of the chapters 'ladder' and 'disturbance_law' (result in, Axes out)."""
 
 import math
 

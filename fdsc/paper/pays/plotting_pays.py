@@ -1,4 +1,4 @@
-"""Figures of the chapters 'baselines' and 'monte_carlo' (result in, Axes out)."""
+"""Figures of the chapters 'simulations' and 'monte_carlo' (result in, Axes out)."""
 
 import numpy as np
 

@@ -1,4 +1,4 @@
-"""Chapter 'theorem1_counterexamples', continued: the cases of the seeded search and their runs.
+"""Chapter 'theorem1', continued: the cases of the seeded search and their runs.
 
 The families of mode pairs and Q's, each case a pure function of ``(family, seed)``
 (:func:`search_case`), the runs of the autonomous switched loop (d = 0) under both readings of

@@ -1,4 +1,4 @@
-"""Chapter 'theorem1_counterexamples': Theorem 1 put to the test.
+"""Chapter 'theorem1': Theorem 1 put to the test.
 
 (a) The exact counterexample: the return map of a 2-state case over one turn
 (:mod:`fdsc.paper.repairs.theorem1_exact`). (b) A seeded search for mode pairs and Q's for which

@@ -1,4 +1,4 @@
-"""Chapter 'theorem1_counterexamples', continued: the exact counterexample (the return-map proof).
+"""Chapter 'theorem1', continued: the exact counterexample (the return-map proof).
 
 In two states with d = 0 the printed law (paper eq. (31)) is homogeneous: every score is a
 quadratic form in x, so the sets where a mode is left are cones bounded by rays through 0, and

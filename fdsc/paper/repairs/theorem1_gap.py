@@ -1,4 +1,4 @@
-"""Chapter 'theorem1_counterexamples', continued: what closes the gap in Theorem 1's proof.
+"""Chapter 'theorem1', continued: what closes the gap in Theorem 1's proof.
 
 (b) The gap-closing certificates of :mod:`fdsc.lyapunov_jumps` (jumps of V, the law's switch-in
 set, or a common P) on the paper's example and on the search's cases. (c) The residues ε_T and

@@ -1,4 +1,4 @@
-"""Chapter 'theorem1_counterexamples', continued: the result of the seeded search.
+"""Chapter 'theorem1', continued: the result of the seeded search.
 
 The outcomes and diagnoses of every case of :mod:`fdsc.paper.repairs.theorem1_cases` gathered in one
 result (counts, families, causes, the divergent and the clean runs), and the smallest divergent

@@ -1,4 +1,4 @@
-"""Chapter 'theorem1_counterexamples', continued: why Theorem 1's LMIs always hold.
+"""Chapter 'theorem1', continued: why Theorem 1's LMIs always hold.
 
 The explicit witness of their feasibility for any pair of Hurwitz modes and any Q (P = t L with
 A'L + LA = -I, t and γ large, checked by eigenvalues) and the switching signal's invariance

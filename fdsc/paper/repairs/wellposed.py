@@ -1,4 +1,4 @@
-"""Chapter 'wellposed_laws': what the printed law does in continuous time, and three well-posed laws.
+"""Chapter 'switching_law': what the printed law does in continuous time, and three well-posed laws.
 
 1. **The conflict region.** With the measured ẋ = A_a x + B d (a the active mode), mode a
    *holds itself* at (x, d) if its own score wins there: ``argmax_j s_j^(a)(x, d) = a``. For two
@@ -122,7 +122,7 @@ def dwell_conditions(tau_d: float) -> dict:
 
     The mode-wise bound τ* = ln μ / (2λ) of :func:`fdsc.paper.shared.dwell_time.dwell_certificate`
     (this chapter) and the Geromel–Colaneri condition of
-    :func:`fdsc.paper.pays.disturbance_law_draws.certificate` (chapter 'disturbance_law'), which is less
+    :func:`fdsc.paper.pays.disturbance_law_draws.certificate` (chapter 'ladder'), which is less
     conservative: a dwell one of them does not certify, the other may.
 
     Parameters

@@ -1,4 +1,4 @@
-"""Chapter 'wellposed_laws', continued: the conflict region of the printed law and its convergence.
+"""Chapter 'switching_law', continued: the conflict region of the printed law and its convergence.
 
 Where each mode holds itself under the measured ẋ (:func:`holds_itself`), the four kinds of
 points of the state space (:data:`REGION_KINDS`) with and without a disturbance, and the

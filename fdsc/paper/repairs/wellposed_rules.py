@@ -1,4 +1,4 @@
-"""Chapter 'wellposed_laws', continued: the three well-posed laws against their parameter.
+"""Chapter 'switching_law', continued: the three well-posed laws against their parameter.
 
 Energies and switch counts of the laws with hysteresis (relative and absolute margin), a minimum
 dwell time and a moving window over each law's parameter (:data:`LAW_GRIDS`), at dt and dt/2;

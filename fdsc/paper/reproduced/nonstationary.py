@@ -1,4 +1,4 @@
-"""Chapter 'nonstationary': paper Figs. 7 and 8 (the ρ_p and ρ_t sweeps), the crossover of
+"""Chapter 'simulations': paper Figs. 7 and 8 (the ρ_p and ρ_t sweeps), the crossover of
 paper Fig. 7 bisected, and the paper's objectives (P.1) and (P.2) measured.
 
 Every run goes through the library's streaming batch simulator (:func:`fdsc.simulate_batch`):

@@ -1,4 +1,4 @@
-"""Chapter 'nonstationary', continued: the crossover of paper Fig. 7 and the objectives (P.1), (P.2).
+"""Chapter 'simulations', continued: the crossover of paper Fig. 7 and the objectives (P.1), (P.2).
 
 The ρ_p at which FDSC stops being best, bisected; the global ratio of (P.1) over each sweep and
 the worst localized ratio of (P.2) over windows of several lengths; where PassC-HF, scaled as

@@ -1,4 +1,4 @@
-"""Chapter 'stationary': paper Figs. 4, 5 and 6 (stationary LF and HF disturbances, four
+"""Chapter 'simulations': paper Figs. 4, 5 and 6 (stationary LF and HF disturbances, four
 controllers), energies, the paper's sentences about these figures, and step halving.
 """
 

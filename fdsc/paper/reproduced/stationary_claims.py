@@ -1,4 +1,4 @@
-"""Chapter 'stationary', continued: the paper's sentences about Figs. 4, 5 and 6.
+"""Chapter 'simulations', continued: the paper's sentences about Figs. 4, 5 and 6.
 
 The paper's sentences about paper Fig. 4 (LF disturbance), Fig. 5 (HF disturbance) and Fig. 6
 (L2-induced norm, HF), each set against the number of the runs of

@@ -1,6 +1,6 @@
 """Shared infrastructure, figures: the time-domain figures of the chapters on the law and on runs.
 
-Chapters 'switching_law', 'stationary' and 'nonstationary': the outputs and the running
+Chapters 'switching_law', 'simulations' 'nonstationary': the outputs and the running
 L2-induced norm of paper Figs. 4-6, σ(t) of each law variant against the piecewise disturbance,
 the sweeps of paper Figs. 7 and 8, and the objectives (P.1) and (P.2). Each takes a chapter's
 result and returns the Axes.

@@ -36,7 +36,7 @@ STYLES = {
     "clairvoyant oracle": ("#7570b3", "*", ":"),
 }
 
-#: ``{family: (colour, marker)}`` of the fixed controllers of Part II (chapter 'fixed_controllers'):
+#: ``{family: (colour, marker)}`` of the fixed controllers of Part II (chapter 'ladder'):
 #: one palette for families, apart from the paper's controllers' colours where they can meet.
 FAMILY_STYLES = {
     "comparator set": ("0.45", "o"),
