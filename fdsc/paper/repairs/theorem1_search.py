@@ -61,6 +61,7 @@ class SearchResult:
         out = {"tried": len(self.cases),
                "not_hurwitz": sum(c.status == "not Hurwitz" for c in self.cases),
                "solver_failures": sum(c.status == "solver" for c in self.cases),
+               "infeasible": sum(c.status == "infeasible" for c in self.cases),
                "feasible": sum(c.status == "feasible" for c in self.cases)}
         for law in _LAWS:
             oc = [o for o in self.outcomes if o.law == law]
@@ -286,6 +287,7 @@ class SearchResult:
         return {"tried": count(cnt["tried"]), "feasible": count(cnt["feasible"]),
                 "not_hurwitz": count(cnt["not_hurwitz"]),
                 "solver_failures": count(cnt["solver_failures"]),
+                "infeasible": count(cnt["infeasible"]),
                 "diverging_measured": count(cnt["diverging_previous"]),
                 "diverging_candidate": count(cnt["diverging_candidate"]),
                 "artefacts_measured": count(cnt["sampling_artefacts_previous"]),
