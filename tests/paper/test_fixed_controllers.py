@@ -8,18 +8,10 @@ import pytest
 
 import fdsc
 from fdsc.paper.pays import fixed_controllers as fc
-from fdsc.paper.pays.disturbance_law import load_full, stored_fixed_set
+from fdsc.paper.pays.disturbance_law import stored_fixed_set
 from fdsc.paper.pays.disturbance_law_draws import SEED, _example, segment_class
 from fdsc.paper.pays.fixed_designs import OPTIMAL_LTI, best_found
 from fdsc.paper.shared.fixed_choice import fixed_in_advance, stored_choice
-
-
-@pytest.fixture(scope="module")
-def full():
-    full = load_full()
-    if full is None:
-        pytest.skip("the full study is not in this checkout")
-    return full
 
 
 @pytest.fixture(scope="module", params=["aircraft", "generic"])

@@ -9,33 +9,25 @@ import pytest
 
 from fdsc.paper.pays import adaptive_rung as ar
 from fdsc.paper.pays import information as inf
-from fdsc.paper.pays.stored_study import load_full
 
 EXAMPLES = ("aircraft", "generic")
 
 
-@pytest.fixture(scope="module")
-def full():
-    full = load_full()
-    if full is None:
-        pytest.skip("the full study is not in this checkout")
-    return full
+def _stored(load, what):
+    res = load()
+    if res is None:
+        pytest.skip(f"the stored {what} is not in this checkout")
+    return res
 
 
 @pytest.fixture(scope="module")
 def info(full):
-    info = inf.load_information()
-    if info is None:
-        pytest.skip("the stored study under noise is not in this checkout")
-    return info
+    return _stored(inf.load_information, "study under noise")
 
 
 @pytest.fixture(scope="module")
 def adapt(full):
-    res = ar.load_adaptive()
-    if res is None:
-        pytest.skip("the stored adaptive rung is not in this checkout")
-    return res
+    return _stored(ar.load_adaptive, "adaptive rung")
 
 
 def test_the_noise_study_was_computed_on_the_stored_study(info, full):

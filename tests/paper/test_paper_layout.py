@@ -34,7 +34,8 @@ PART_LEVEL = {"I. The paper, reproduced": 1, "II. Does FDSC pay?": 2, "Appendice
 #: Chapters of Part I that also tell what the layers after it compute about the same result (the
 #: switching law with its repairs, Theorem 1 with its counterexamples, the paper's simulations with
 #: the comparators on the same cases): their layer is the highest of what they tell.
-CHAPTER_LEVEL = {"switching_law": LEVEL["repairs"], "theorem1": LEVEL["repairs"], "simulations": LEVEL["pays"]}
+CHAPTER_LEVEL = {"switching_law": LEVEL["repairs"], "theorem1": LEVEL["repairs"],
+                 "simulations": LEVEL["pays"]}
 
 #: The entry module of each chapter split into siblings, and the split modules of the appendix
 #: on the printed bounds and of the figures.
