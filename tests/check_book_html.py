@@ -42,7 +42,10 @@ The landing page (:data:`ROOT_PAGE`) must open with the section "Does FDSC work,
 hold at most :data:`MAX_ROOT_WORDS` words of visible text; its short list of errata must have as
 many items as the report's (:data:`REPORT_PAGE`), each linked to its item there. No page's prose
 shows the machinery (:func:`leaks`: e-notation, integers of five or more digits without
-separators, dictionary keys, notebook file names) or an empty heading (:func:`empty_headings`). Every page that uses a term of
+separators, dictionary keys, notebook file names) or an empty heading (:func:`empty_headings`),
+and no page types a result that another page prints (:func:`typed_copies`: a number of three or
+more significant digits in a page's Markdown or in the prose its code cells glue, found in
+another page's text): a result printed on two pages comes from one computed value. Every page that uses a term of
 :data:`LINKED_TERMS` links it to the glossary at least once. No sentence calls Theorem 1's LMIs a
 certificate (:func:`theorem1_certified`): their feasibility certifies nothing (they hold for every
 Hurwitz pair). No page's visible text may speak to the project
@@ -61,7 +64,7 @@ from pathlib import Path
 from urllib.parse import unquote, urlparse
 
 __all__ = ["check", "visible_text", "raw_tex_snippets", "code_share", "project_speak", "unlinked_terms",
-           "theorem1_certified", "leaks", "empty_headings"]
+           "theorem1_certified", "leaks", "empty_headings", "typed_numbers", "typed_copies"]
 
 #: Chapters and the least number of figures each must show.
 MIN_IMAGES = {"frequency_ranges.html": 3, "gkyp_lemma.html": 1, "passive_controllers.html": 3,
@@ -537,6 +540,107 @@ def table_problems(html):
     return out
 
 
+#: Pages whose typed numbers are history or bibliography (versions, years, DOIs), not results.
+TYPED_OK_PAGES = {"changelog", "how_to_cite", "references", "api"}
+#: A number as prose prints a result: a decimal, an integer with thousands separators, or one of
+#: four or more digits (years excepted below); not a piece of a DOI, a version or a dotted name.
+_TYPED_NUMBER = re.compile(r"(?<![\w.,/#−-])(\d{1,3}(?:,\d{3})+(?:\.\d+)?|\d+\.\d+|\d{4,})(?![\w/]|\.\d|,\d{3})")
+_MD_NOT_PROSE = (re.compile(r"```.*?```", re.S), re.compile(r"\$\$.*?\$\$", re.S),
+                 re.compile(r"\{[\w:-]+\}`[^`]*`"), re.compile(r"\$[^$\n]*\$"), re.compile(r"`[^`]*`"),
+                 re.compile(r"\]\([^)]*\)"), re.compile(r"^:[\w-]+:.*$", re.M),
+                 re.compile(r"<[^>]+>"))
+
+
+def _significant(number):
+    """Significant digits of a number as printed, without separators, the point, and leading or
+    trailing zeros (1.00, 3,000 and 0.50 are round settings or definitions, not measurements)."""
+    return len(number.replace(",", "").replace(".", "").strip("0"))
+
+
+def typed_numbers(markdown):
+    """Numbers that a page's Markdown source types as results: at least three significant
+    digits, outside glue and other roles, maths, code, link targets and directive options;
+    years (1900–2099 without separators) are not results.
+
+    Parameters
+    ----------
+    markdown : str
+
+    Returns
+    -------
+    list of str
+
+    Examples
+    --------
+    >>> typed_numbers("K_f3's peak is 1.605 ({glue:text}`peak`); T = 500 s, h = 0.2, "
+    ...               "9,666.0 exactly, ×1.00 by definition, $\\gamma = 2.345$, in 2013 (`x = 4.567`), "
+    ...               "doi 10.5281/zenodo.1")
+    ['1.605', '9,666.0']
+    """
+    for pattern in _MD_NOT_PROSE:
+        markdown = pattern.sub(" ", markdown)
+    return [x for x in _TYPED_NUMBER.findall(markdown)
+            if _significant(x) >= 3 and not (x.isdigit() and len(x) == 4 and 1900 <= int(x) < 2100)]
+
+
+def _strings(code):
+    """The string literals of a code cell (the prose it glues), or nothing if it does not parse."""
+    import io
+    import tokenize
+
+    try:
+        return [t.string for t in tokenize.generate_tokens(io.StringIO(code).readline)
+                if t.type == tokenize.STRING]
+    except (tokenize.TokenError, SyntaxError, IndentationError):
+        return []
+
+
+def _sources(book):
+    """``{page stem: text}``: the Markdown of the book's pages, and for a notebook its Markdown
+    cells and the string literals of its code cells (the prose a cell glues)."""
+    import json
+
+    out = {}
+    for path in sorted(book.glob("*.ipynb")):
+        cells = json.loads(path.read_text(encoding="utf-8")).get("cells", [])
+        out[path.stem] = "\n\n".join("".join(c["source"]) if c["cell_type"] == "markdown"
+                                      else "\n".join(_strings("".join(c["source"]))) for c in cells)
+    for path in sorted(book.glob("*.md")):
+        out[path.stem] = path.read_text(encoding="utf-8")
+    return out
+
+
+def typed_copies(book, root):
+    """A number typed in one page's source and printed on another page: ``[(page, number,
+    [other pages])]``. A result the book prints on two pages comes from one computed (glued)
+    value; a typed copy of it is how copies drift apart.
+
+    Parameters
+    ----------
+    book : path
+        The book's sources (notebooks and Markdown pages).
+    root : path
+        The built HTML.
+
+    Returns
+    -------
+    list of tuple
+    """
+    book, root = Path(book), Path(root)
+    shown = {p.stem: visible_text(article(p.read_text(encoding="utf-8"))) for p in root.glob("*.html")
+             if p.name not in GENERATED_PAGES}
+    found = []
+    for stem, markdown in _sources(book).items():
+        if stem in TYPED_OK_PAGES:
+            continue
+        for number in dict.fromkeys(typed_numbers(markdown)):
+            pattern = re.compile(r"(?<![\d.,])" + re.escape(number) + r"(?![\d]|[.,]\d)")
+            others = sorted(k for k, text in shown.items() if k != stem and pattern.search(text))
+            if others:
+                found.append((stem, number, others))
+    return found
+
+
 def check(root):
     root = Path(root)
     problems = []
@@ -613,6 +717,9 @@ def check(root):
         problems += [f"{page.name}: raw TeX in visible text: '{s}'" for s in tex[:MAX_TEX_REPORTS]]
         if len(tex) > MAX_TEX_REPORTS:
             problems.append(f"{page.name}: raw TeX in visible text: {len(tex) - MAX_TEX_REPORTS} more")
+    if stems:
+        problems += [f"{stem}: {number} is typed here and printed on {', '.join(others)}: print it "
+                     "from one computed value" for stem, number, others in typed_copies(book, root)]
     return problems
 
 
