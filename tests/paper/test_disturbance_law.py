@@ -125,9 +125,9 @@ def fs():
     return dl.stored_fixed_set(full, "generic")
 
 
-def test_a_draw_is_the_same_on_two_runs_and_its_baselines_are_consistent(fs):
-    a = runs.draw_result("generic", 3, dd.SEED, fs)
-    b = runs.draw_result("generic", 3, dd.SEED, fs)
+def test_a_draw_is_the_same_on_two_runs_its_baselines_are_consistent_and_a_part_runs_alone(fs):
+    a = runs.draw_result("generic", 4, dd.SEED, fs)
+    b = runs.draw_result("generic", 4, dd.SEED, fs)
     assert a == b
     assert set(a["fixed"]) == set(fs.names) and set(a["runs"]) == set(runs.settings())
     names = runs.candidates("generic")[0]
@@ -142,6 +142,19 @@ def test_a_draw_is_the_same_on_two_runs_and_its_baselines_are_consistent(fs):
     # the switches the law makes move u; a law that does not switch moves it not at all
     assert all(j == 0.0 for _e, s, _d, j in a["runs"].values() if s == 0)
     assert any(j > 0 for _e, s, _d, j in a["runs"].values() if s > 0)
+    # a test draw runs only the settings asked, and gives them the same numbers as the whole draw
+    every = a
+    keys = runs.settings()[5:7]
+    part = runs.draw_result("generic", 4, dd.SEED, fs, keys, keys[:1])
+    assert set(part["runs"]) == set(keys)
+    assert part["runs"][keys[0]] == every["runs"][keys[0]]
+    e, s, d, step = part["runs"][keys[1]]
+    assert (e, s, d) == every["runs"][keys[1]][:3] and math.isnan(step)      # its step not measured
+    assert part["fixed"] == every["fixed"] and part["ideal"] == every["ideal"]
+    with pytest.raises(ValueError, match="keys must be settings"):
+        runs.draw_result("generic", 4, dd.SEED, fs, ["gains/cost/copies/9/9"])
+    with pytest.raises(ValueError, match="steps must be among keys"):
+        runs.draw_result("generic", 4, dd.SEED, fs, keys[:1], keys[1:])
 
 
 def test_a_law_held_on_one_controller_of_a_pair_is_that_controllers_fixed_run(fs):
@@ -179,21 +192,6 @@ def test_a_stored_choice_matches_the_stored_study():
         assert choice[e]["name"] == full[e]["fixed_in_advance"]
         assert choice[e]["matrices"] == full[e]["fixed_controllers"][choice[e]["name"]]["matrices"]
     assert choice["commit"] == full["commit"] and choice["n"] == full["n"] == dl.N_FULL
-
-
-def test_a_test_draw_runs_only_the_settings_asked_and_gives_them_the_same_numbers(fs):
-    every = runs.draw_result("generic", 4, dd.SEED, fs)
-    keys = runs.settings()[5:7]
-    part = runs.draw_result("generic", 4, dd.SEED, fs, keys, keys[:1])
-    assert set(part["runs"]) == set(keys)
-    assert part["runs"][keys[0]] == every["runs"][keys[0]]
-    e, s, d, step = part["runs"][keys[1]]
-    assert (e, s, d) == every["runs"][keys[1]][:3] and math.isnan(step)      # its step not measured
-    assert part["fixed"] == every["fixed"] and part["ideal"] == every["ideal"]
-    with pytest.raises(ValueError, match="keys must be settings"):
-        runs.draw_result("generic", 4, dd.SEED, fs, ["gains/cost/copies/9/9"])
-    with pytest.raises(ValueError, match="steps must be among keys"):
-        runs.draw_result("generic", 4, dd.SEED, fs, keys[:1], keys[1:])
 
 
 @pytest.mark.parametrize("example", ["aircraft", "generic"])
