@@ -5,6 +5,7 @@ import numpy as np
 from fdsc.paper.pays.generic_example import W_H, W_L, GenericStudy
 from fdsc.paper.pays.plotting_pays import STYLE
 from fdsc.paper.shared.plotting import _axes as _new_axes
+from fdsc.paper.shared.plotting_axes import LEGEND_FONTSIZE
 
 __all__ = ["plot_sigma", "plot_rho_p", "plot_rho_t"]
 
@@ -37,7 +38,7 @@ def plot_sigma(result: GenericStudy, ax=None):
                     textcoords="offset points")
     ax.set_xlabel(r"frequency $\omega$ [rad/s]")
     ax.set_ylabel(r"$\sigma_{\max}(G_K(j\omega))$ [-]")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=LEGEND_FONTSIZE)
     return ax
 
 
@@ -51,7 +52,7 @@ def _sweep(comp, param, ax, xlabel, log_x):
         ax.set_xscale("log")
     ax.set_xlabel(xlabel)
     ax.set_ylabel(r"energy ratio $\int z^\top z \,/ \int d^2$ [-]")
-    ax.legend(fontsize=8, ncol=2)
+    ax.legend(fontsize=LEGEND_FONTSIZE, ncol=2)
     return ax
 
 
@@ -89,5 +90,5 @@ def plot_rho_t(result: GenericStudy, ax=None):
     ax = _sweep(result.rho_t_sweep, np.asarray(result.rho_t), _axes(ax), r"$\rho_t$ [-]", False)
     ax.plot(result.rho_t, result.ideal_rho_t / result.rho_t_sweep.input_energy, color="k", ls="-.", lw=1.5,
             label="ideal segment law")
-    ax.legend(fontsize=8, ncol=2)
+    ax.legend(fontsize=LEGEND_FONTSIZE, ncol=2)
     return ax

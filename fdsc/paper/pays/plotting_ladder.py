@@ -5,6 +5,7 @@ import math
 import numpy as np
 
 from fdsc.paper.shared.plotting import _axes
+from fdsc.paper.shared.plotting_axes import LEGEND_FONTSIZE
 from fdsc.paper.shared.prose import times
 
 __all__ = ["KIND", "KIND_STYLE", "SHORT", "plot_ladder", "plot_excess_by_time", "plot_noise_levels",
@@ -121,8 +122,11 @@ def plot_excess_by_time(excess: dict, ax=None, *, label=None, color="#0072b2", o
     ax.bar(x, 100 * share, width=width, color=color, label=label)
     for xi, sh, e, r in zip(x, share, ex, ref, strict=True):
         if r > 0:
-            ax.text(xi, 100 * max(sh, 0.0) + 1.0, f"{100 * e / r:+.0f} %", ha="center", va="bottom",
-                    fontsize=7, rotation=90, color=color)
+            ax.annotate(f"{100 * e / r:+.0f} %", (xi, 100 * max(sh, 0.0)), xytext=(0, 2),
+                        textcoords="offset points", ha="center", va="bottom", fontsize=LEGEND_FONTSIZE,
+                        rotation=90, color=color)
+    # room above the tallest bar for its label (about 4 characters at the book's text size)
+    ax.set_ylim(0, max(ax.get_ylim()[1], 100 * share.max() * 1.3))
     labels = [f"{_fmt(a)}–{_fmt(b)}" if math.isfinite(b) else f"≥ {_fmt(a)}"
               for a, b in zip(edges[:-1], edges[1:], strict=True)]
     ax.set_xticks(np.arange(share.size))
@@ -186,6 +190,6 @@ def plot_noise_levels(rows: list, ax=None, *, title=None, legend=True):
     if title:
         ax.set_title(title, fontsize=10, loc="left")
     if legend:
-        ax.legend(fontsize=8, loc="lower left", ncol=2, frameon=False)
+        ax.legend(fontsize=LEGEND_FONTSIZE, loc="lower left", ncol=2, frameon=False)
     return ax
 

@@ -5,6 +5,7 @@ import math
 import numpy as np
 
 from fdsc.paper.shared.plotting import _axes, _minor_label, plain_log_ticks
+from fdsc.paper.shared.plotting_axes import LEGEND_FONTSIZE
 from fdsc.paper.shared.prose import times
 from fdsc.paper.shared.style import FAMILY_STYLES, MARK_COLOR, band_color, family_style, style
 
@@ -41,10 +42,10 @@ def plot_law_run(lr, axes):
     lo = np.quantile(mu[1:][mu[1:] > 0], 0.02)
     top.set_ylim(lo, mu.max() * 3)
     top.set_ylabel(r"monitoring signal $\mu_i$ [-]")
-    top.legend(fontsize=8, ncol=2, loc="lower right")
+    top.legend(fontsize=LEGEND_FONTSIZE, ncol=2, loc="lower right")
     edges = np.r_[0.0, lr.run.switch_times, lr.run.horizon]
     bottom.stairs(list(lr.run.sequence), edges, color="k", lw=1.2, baseline=None)
-    bottom.set_yticks(range(len(lr.names)), lr.names, fontsize=8)
+    bottom.set_yticks(range(len(lr.names)), lr.names, fontsize=LEGEND_FONTSIZE)
     bottom.set_ylim(-0.5, len(lr.names) - 0.5)
     bottom.set_xlabel("t [s]")
     bottom.set_ylabel("active controller")
@@ -99,7 +100,7 @@ def plot_ratio_cdf(series, reference, ax=None, *, xlim=None):
     ax.set_ylim(0, 1)
     ax.grid(True, which="both", alpha=0.3)
     # below the axes: inside, it would cover the far curves of one example or another
-    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2)
+    ax.legend(fontsize=LEGEND_FONTSIZE, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2)
     return ax
 
 
@@ -171,7 +172,7 @@ def plot_fixed_plane(points, chosen, ax=None, *, top=None, zoom=None, zoom_at=(0
     ax.set_xscale("log")
     ax.set_yscale("log")
     # plain numbers on the log axes (0.4, not 4 × 10⁻¹)
-    from matplotlib.ticker import FuncFormatter
+    from matplotlib.ticker import FuncFormatter, MaxNLocator
 
     plain = FuncFormatter(lambda v, _pos: f"{v:g}")
     for axis in (ax.xaxis, ax.yaxis):
@@ -180,7 +181,7 @@ def plot_fixed_plane(points, chosen, ax=None, *, top=None, zoom=None, zoom_at=(0
     ax.set_xlabel(r"LF band peak $\gamma_{LF}$ [-]")
     ax.set_ylabel(r"HF band peak $\gamma_{HF}$ [-]")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8, loc="best")
+    ax.legend(fontsize=LEGEND_FONTSIZE, loc="best")
     if zoom is not None:
         inset = ax.inset_axes(list(zoom_at))
         box = {n: p for n, p in points.items()
@@ -192,7 +193,10 @@ def plot_fixed_plane(points, chosen, ax=None, *, top=None, zoom=None, zoom_at=(0
         inset.set_ylim(zoom[2], zoom[3])
         inset.set_xlabel("")
         inset.set_ylabel("")
-        inset.tick_params(labelsize=7)
+        # few ticks, at the size of the book's text: the inset is small
+        inset.xaxis.set_major_locator(MaxNLocator(3))
+        inset.yaxis.set_major_locator(MaxNLocator(3))
+        inset.tick_params(labelsize=LEGEND_FONTSIZE)
         inset.get_legend().remove()
         ax.indicate_inset_zoom(inset, edgecolor="0.4")
         if named is not None:
@@ -232,7 +236,7 @@ def _name_members(ax, points, family):
             dy = 8
         placed.append((fx, fy, above))
         ax.annotate(", ".join(m[0] for m in members), (lf, hf), xytext=(dx, dy),
-                    textcoords="offset points", fontsize=8, ha=ha)
+                    textcoords="offset points", fontsize=LEGEND_FONTSIZE, ha=ha)
 
 
 def plot_family_ratios(ratios, reference, ax=None):
@@ -254,7 +258,7 @@ def plot_family_ratios(ratios, reference, ax=None):
     labels = list(ratios)
     ax.boxplot([np.asarray(ratios[k], dtype=float) for k in labels], vert=False, whis=(5, 95),
                showfliers=False, medianprops={"color": "k"})
-    ax.set_yticks(range(1, len(labels) + 1), labels, fontsize=8)
+    ax.set_yticks(range(1, len(labels) + 1), labels, fontsize=LEGEND_FONTSIZE)
     ax.axvline(1.0, color=MARK_COLOR, lw=0.8)
     ax.set_xscale("log")
     plain_log_ticks(ax.xaxis)
@@ -316,7 +320,7 @@ def plot_switch_tradeoff(table, chosen, limit, ax=None, *, top=2.0):
     ax.set_xlabel("switches per change of the dominating band [-]")
     ax.set_ylabel("geometric-mean energy ratio [-]")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8, loc="upper right")
+    ax.legend(fontsize=LEGEND_FONTSIZE, loc="upper left")   # off the switching limit and the costly laws
     return ax, off
 
 
@@ -343,5 +347,5 @@ def plot_law_rho_t(entries, ax=None):
     ax.set_xlabel(r"$\rho_t$ [-]")
     ax.set_ylabel("energy / chosen in advance [-]")
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=LEGEND_FONTSIZE)
     return ax

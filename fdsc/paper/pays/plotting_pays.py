@@ -3,7 +3,7 @@
 import numpy as np
 
 from fdsc.paper.shared.plotting import _axes
-from fdsc.paper.shared.plotting_axes import LEGEND_FONTSIZE
+from fdsc.paper.shared.plotting_axes import LEGEND_FONTSIZE, _below_legend, _end_labels
 from fdsc.paper.shared.style import STYLES, band_color, style
 
 __all__ = ["STYLE", "plot_stationary_baselines", "plot_family_baselines", "plot_mc_ratio", "plot_mc_cdf"]
@@ -40,12 +40,12 @@ def plot_stationary_baselines(result, ax=None):
     ax.invert_yaxis()
     ax.set_xscale("log")
     ax.set_xlabel(r"energy ratio $\int z^\top z\,dt \,/ \int d^2\,dt$ over 500 s [-]")
-    ax.legend(fontsize=8, loc="lower right")
+    ax.legend(fontsize=LEGEND_FONTSIZE, loc="lower right")
     ax.grid(True, axis="x", which="both", alpha=0.3)
     return ax
 
 
-def plot_family_baselines(result, family, ax=None, *, names=None, log=True, legend=True):
+def plot_family_baselines(result, family, ax=None, *, names=None, log=True, legend=True, end_labels=False):
     """Energies of the controllers over the ρ_p family (paper Fig. 7) or the ρ_t family (Fig. 8),
     the latter with the ideal segment law.
 
@@ -64,6 +64,10 @@ def plot_family_baselines(result, family, ax=None, *, names=None, log=True, lege
         Logarithmic energy axis (a linear one tells close curves apart).
     legend : bool, optional
         Draw the legend inside the Axes (with several panels, draw one for the figure instead).
+    end_labels : bool, optional
+        Name each curve at its right end, in its colour, beside the Axes, instead of a legend:
+        the FDSC variants (purple, pink, brown) and PassC-HF and HF best (yellow, orange) have
+        close hues, which a legend leaves to be matched.
 
     Returns
     -------
@@ -84,7 +88,9 @@ def plot_family_baselines(result, family, ax=None, *, names=None, log=True, lege
     ax.set_xlabel(r"$\rho_p$ [-]" if family == "mixed" else r"$\rho_t$ [-]")
     ax.set_ylabel(r"$\int z^\top z\,dt$ over the run [-]")
     ax.grid(True, which="both", alpha=0.3)
-    if legend:
+    if end_labels:
+        _end_labels(ax)
+    elif legend:
         ax.legend(fontsize=LEGEND_FONTSIZE, ncol=2)
     return ax
 
@@ -117,7 +123,8 @@ def plot_mc_ratio(result, ax=None, *, against="oracle"):
         f"{result.in_advance} (fixed in advance)"
     ax.set_ylabel(f"energy / energy of\n{ref} [-]")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7, ncol=2)
+    # below the Axes: inside, the legend would cover the reference ratio 1 or the draws
+    _below_legend(ax, ncol=2, y=-0.2)
     return ax
 
 
@@ -145,5 +152,5 @@ def plot_mc_cdf(result, ax=None, *, against="oracle"):
                   if against == "oracle" else f"energy / energy of {result.in_advance} [-]")
     ax.set_ylabel("share of draws [-]")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=LEGEND_FONTSIZE)
     return ax

@@ -12,7 +12,7 @@ import numpy as np
 from matplotlib import patheffects
 
 from fdsc import envelope
-from fdsc.paper.shared.plotting_axes import LEGEND_FONTSIZE, _axes, _outside_legend, _symlog
+from fdsc.paper.shared.plotting_axes import LEGEND_FONTSIZE, _axes, _below_legend, symlog_axis
 from fdsc.paper.shared.plotting_runs import (
     plot_l2_curves,
     plot_outputs,
@@ -51,8 +51,14 @@ CONTROLLER_STYLES = {name: (color, ls) for name, (color, _, ls) in STYLES.items(
 BAND_COLORS = {band: band_color(band) for band in ("LF", "MF", "HF", "EF")}
 
 
+#: ``{band: hatch}`` of a band's shading: the bands stay apart where their colours are close
+#: (MF's olive and HF's goldenrod) or printed in grey.
+BAND_HATCHES = {"LF": "\\\\", "MF": "..", "HF": "//", "EF": "xx"}
+
+
 def plot_psi_weights(result, kind, ax=None, *, real_part=True):
-    """Weight ``[jω;1]*Ψ[jω;1]`` of one band over ±ω (symlog axes), band shaded.
+    """Weight ``[jω;1]*Ψ[jω;1]`` of one band over ±ω (symlog axes), the band shaded, hatched and
+    named where it lies.
 
     Parameters
     ----------
@@ -72,22 +78,41 @@ def plot_psi_weights(result, kind, ax=None, *, real_part=True):
     ax = _axes(ax)
     w, d = result.omega, result[kind]
     color = BAND_COLORS[kind]
-    ax.plot(w, d.weight, color=color, label=r"$[j\omega;1]^*\Psi[j\omega;1]$")
+    ax.plot(w, d.weight, color=color, lw=1.8, zorder=3, label=r"$[j\omega;1]^*\Psi[j\omega;1]$")
     if real_part and not np.allclose(d.weight, d.real_weight):
-        ax.plot(w, d.real_weight, color="k", ls="--", label=r"weight of Re $\Psi$ (real signals)")
-    hi = d.upper if math.isfinite(d.upper) else np.abs(w).max()
-    for sgn in (1, -1):
-        a, b = sorted((sgn * d.lower, sgn * hi))
-        ax.axvspan(a, b, color=color, alpha=0.12, lw=0, label="band" if sgn == 1 else None)
-    ax.axhline(0, color="0.5", lw=0.8)
+        ax.plot(w, d.real_weight, color="k", ls="--", zorder=3, label=r"weight of Re $\Psi$ (real signals)")
+    ax.axhline(0, color="0.5", lw=0.8, zorder=2)
     ax.set_xscale("symlog", linthresh=1e-1)
+    end = 1.5 * np.abs(w).max()
+    ax.set_xlim(-end, end)
     ticks = [-1e3, -1e2, -1e1, -1, 0, 1, 1e1, 1e2, 1e3]
     ax.set_xticks(ticks, ["$-10^3$", "", "$-10$", "", "0", "", "$10$", "", "$10^3$"])
-    _symlog(ax, "y", 1.0)
+    symlog_axis(ax, "y", 1.0)
+    # the band behind the curves: shaded and hatched in its colour, edged, and named in each of
+    # its parts (where it lies on the page, not only in the title), at the top unless the curve
+    # runs there
+    hi = d.upper if math.isfinite(d.upper) else end
+    parts = [(-hi, hi)] if d.lower == 0 else [(-hi, -d.lower), (d.lower, hi)]
+    to_axes = ax.transAxes.inverted()
+    xy = to_axes.transform(ax.transData.transform(np.c_[w, d.weight]))
+    for a, b in parts:
+        ax.axvspan(a, b, facecolor=color, alpha=0.22, lw=0, zorder=0)
+        ax.axvspan(a, b, facecolor="none", edgecolor=color, hatch=BAND_HATCHES[kind], lw=0, alpha=0.5,
+                   zorder=1)
+        for edge in (a, b):
+            if abs(edge) < end:
+                ax.axvline(edge, color=color, lw=1.0, zorder=1)
+        xa, xb = (to_axes.transform(ax.transData.transform((v, 0)))[0] for v in (max(a, -end), min(b, end)))
+        mid = 0.5 * (xa + xb)
+        under = xy[np.abs(xy[:, 0] - mid) < 0.08, 1]
+        top = not under.size or under.max() < 0.75
+        ax.text(mid, 0.96 if top else 0.04, f"{kind} band", transform=ax.transAxes, ha="center",
+                va="top" if top else "bottom", fontsize=LEGEND_FONTSIZE, fontweight="bold", zorder=4,
+                bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": color, "lw": 1.0})
     ax.set_xlabel(r"$\omega$ [rad/s]")
     ax.set_ylabel("weight [(rad/s)$^2$]")
     ax.set_title(d.label)
-    ax.legend(fontsize=7, loc="lower center")
+    ax.legend(fontsize=LEGEND_FONTSIZE, loc="lower center")
     return ax
 
 
@@ -215,7 +240,7 @@ def plot_hf_sigma_scan(result, ax=None, *, reference=True):
                    label="K_f3 out of band")
     ax.set_xlabel(r"fictitious-pole parameter $\sigma$ [rad/s]")
     ax.set_ylabel(r"$\sigma_{max}$ peak [-]")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=LEGEND_FONTSIZE)
     return ax
 
 
@@ -293,10 +318,10 @@ def plot_gap(result, ax=None, *, band_limits=None):
     ax.axhline(0, color="0.4", lw=0.8)
     for wb in result.band_limits if band_limits is None else band_limits:
         ax.axvline(wb, color="0.5", ls=":", lw=1)
-    ax.set_yscale("symlog", linthresh=1e-1)
+    symlog_axis(ax, "y", 1e-1)
     ax.set_xlabel(r"$\omega$ [rad/s]")
     ax.set_ylabel(r"gap$(K^{in}, K^{out}, \omega)$ [-]")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=LEGEND_FONTSIZE)
     return ax
 
 
@@ -324,10 +349,10 @@ def plot_power_vs_alpha(data, ax: plt.Axes | None = None) -> plt.Axes:
         if a is not None:
             ax.axvline(a, color=line.get_color(), ls=":", lw=1)
     ax.axhline(0, color="0.4", lw=0.8)
-    _symlog(ax, "y", 1.0)
+    symlog_axis(ax, "y", 1.0)
     ax.set_xlabel(r"dominance degree $\alpha(\Omega_3)$ of the disturbance [-]")
     ax.set_ylabel(r"average FD-EPF $P_a$ [-]")
-    _outside_legend(ax)
+    _below_legend(ax, ncol=2, y=-0.18)
     return ax
 
 
@@ -376,7 +401,7 @@ def plot_epf_series(data, ax: plt.Axes | None = None, *, legend: bool = True, bi
         ax.plot(data.t, data.P_a[kind], color=color, lw=2.2, path_effects=halo, zorder=4,
                 label=f"running $P_a$, {kind} term")
     ax.axhline(0, color="0.4", lw=0.8, zorder=3)
-    _symlog(ax, "y", 1e-3)
+    symlog_axis(ax, "y", 1e-3)
     ax.set_xlabel("$t$ [s]")
     ax.set_ylabel("FD-EPF [-]")
     gain = f"$K_{{f_{data.gain[3:]}}}$" if data.gain.startswith("K_f") else data.gain
@@ -410,8 +435,8 @@ def plot_prop1_cases(rows, ax: plt.Axes | None = None) -> plt.Axes:
             ax.scatter([c.S_in for c in sel], [c.S_out for c in sel], marker=m, s=18,
                        facecolors="none", edgecolors=[VERDICT_COLORS[bool(c.passed)] for c in sel],
                        label=kind)
-    _symlog(ax, "x", 1e-4)
-    _symlog(ax, "y", 1e-4)
+    symlog_axis(ax, "x", 1e-4)
+    symlog_axis(ax, "y", 1e-4)
     ax.axvline(0, color="0.4", lw=0.8)
     ax.axhline(0, color="0.4", lw=0.8)
     x0, x1 = ax.get_xlim()
@@ -421,8 +446,8 @@ def plot_prop1_cases(rows, ax: plt.Axes | None = None) -> plt.Axes:
     ax.set_ylabel(r"$S(\Omega^{out}, Q^{out})$ [-]")
     ax.set_xlim(x0, x1)
     ax.set_ylim(y0, y1)
-    _outside_legend(ax)
-    ax.get_legend().set_title("dark: holds, magenta: fails", prop={"size": 7})
+    _below_legend(ax, ncol=2, y=-0.14)
+    ax.get_legend().set_title("dark: holds, magenta: fails", prop={"size": LEGEND_FONTSIZE})
     return ax
 
 
@@ -440,23 +465,23 @@ def plot_fdsc_diagram(ax: plt.Axes | None = None) -> plt.Axes:
     """
     from matplotlib.patches import FancyArrowPatch, FancyBboxPatch
 
-    ax = _axes(ax, figsize=(9, 4.2))
+    ax = _axes(ax, figsize=(7, 4))
     ax.set_xlim(0, 10)
     ax.set_ylim(0, 5)
     ax.axis("off")
 
     def box(x, y, w, h, text, color):
         ax.add_patch(FancyBboxPatch((x, y), w, h, boxstyle="round,pad=0.05", fc=color, ec="k"))
-        ax.text(x + w / 2, y + h / 2, text, ha="center", va="center", fontsize=9)
+        ax.text(x + w / 2, y + h / 2, text, ha="center", va="center", fontsize=LEGEND_FONTSIZE)
 
     def arrow(a, b, text=None, off=(0, 0.15)):
         ax.add_patch(FancyArrowPatch(a, b, arrowstyle="-|>", mutation_scale=12, lw=1.2))
         if text:
             ax.text((a[0] + b[0]) / 2 + off[0], (a[1] + b[1]) / 2 + off[1], text, ha="center",
-                    fontsize=9)
+                    fontsize=LEGEND_FONTSIZE)
 
     box(3.6, 3.3, 2.8, 1.1, "plant\n$\\dot x = Ax + B_1 d + B_2 u$\n$z = Cx + D_1 d + D_2 u$", "#e8f0fb")
-    box(0.4, 1.0, 2.6, 1.2, "passive gains\n$K_1 = K_{f_1}$ (LF), $K_2 = K_{f_3}$ (HF)", "#fdf1e0")
+    box(0.4, 1.0, 2.6, 1.2, "passive gains\n$K_1 = K_{f_1}$ (LF)\n$K_2 = K_{f_3}$ (HF)", "#fdf1e0")
     box(3.7, 0.6, 2.6, 1.6, "switching law\n$\\sigma(t) = \\arg\\max_i$\n"
         "$[\\dot x; x]^*(\\Psi_i \\otimes Q_i)[\\dot x; x]$", "#eaf6ea")
     box(7.0, 1.0, 2.4, 1.2, "FD-EPF of each range\n$P_t(\\Omega_i, Q_i, t)$", "#f5eaf6")

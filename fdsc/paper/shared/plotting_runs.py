@@ -14,8 +14,7 @@ from fdsc.paper.shared.plotting_axes import (
     _axes,
     _below_legend,
     _label,
-    _outside_legend,
-    _symlog,
+    symlog_axis,
 )
 from fdsc.paper.shared.style import style
 
@@ -33,9 +32,10 @@ def plot_outputs(data, component: int, ax: plt.Axes | None = None, *, scale: dic
     that holds every sample, so oscillations faster than the bins are not aliased into a false
     slow wave); with ``head=True`` the start of the run is drawn sample by sample instead. The
     switched loops' bands are pale, with thin translucent edges, and drawn below the fixed
-    controllers' lines. Where several fixed controllers are drawn, the first is drawn dashed on top
-    of the wider later ones, so that near-equal outputs both show. The legend goes above the axes,
-    once for a column of axes (on its top row).
+    controllers' lines; every band lies behind every line, so that no band hides a line. Where several
+    fixed controllers are drawn, the first is drawn dashed on top of the wider later ones, so that
+    near-equal outputs both show. The legend goes above the axes, once for a column of axes (on
+    its top row).
 
     Parameters
     ----------
@@ -67,11 +67,12 @@ def plot_outputs(data, component: int, ax: plt.Axes | None = None, *, scale: dic
             continue
         st = style(name, k)
         color, ls = st["color"], st["linestyle"]
-        # the switched loops' spikes are drawn first and lighter, so that the fixed gains'
+        # the switched loops' spikes are drawn lighter and below, so that the fixed gains'
         # smaller outputs stay visible on top of them; each later fixed gain is drawn below
-        # and wider than the one before, so that near-equal outputs both show
+        # and wider than the one before, so that near-equal outputs both show; every band lies
+        # below every line (zorder 1 and 2 against 3 and up)
         fixed = not name.startswith("FDSC")
-        z = 10 - n_fixed if fixed else 1
+        z = 10 - n_fixed if fixed else 3
         n_fixed += fixed
         several = sum(not n.startswith("FDSC") for n in data.z_lo if names is None or n in names) > 1
         if fixed and n_fixed == 1 and several:
@@ -80,21 +81,21 @@ def plot_outputs(data, component: int, ax: plt.Axes | None = None, *, scale: dic
         lab = _label(name) if f == 1.0 else f"{_label(name)} × {f:g}"
         if head:
             ax.plot(data.t_head, f * data.z_head[name][:, component], color=color, ls=ls,
-                    lw=0.9 if z == 1 else 0.8 + 0.8 * n_fixed, zorder=z, label=lab)
+                    lw=0.9 if not fixed else 0.8 + 0.8 * n_fixed, zorder=z, label=lab)
         else:
             lo, hi = f * data.z_lo[name][:, component], f * data.z_hi[name][:, component]
             # a switched loop's band is pale and its edges thin and translucent, so that its
             # spikes do not swamp the fixed gains' lines drawn on top of it
-            ax.fill_between(data.t, lo, hi, step="post", color=color, alpha=0.12 if z == 1 else 0.35,
-                            lw=0, zorder=z)
-            lw = 0.5 if z == 1 else 0.6 + 0.8 * n_fixed
+            ax.fill_between(data.t, lo, hi, step="post", color=color, alpha=0.35 if fixed else 0.12,
+                            lw=0, zorder=2 if fixed else 1)
+            lw = 0.6 + 0.8 * n_fixed if fixed else 0.5
             for j, edge in enumerate((lo, hi)):  # edges keep a thin band visible where lo ≈ hi
-                ax.plot(data.t, edge, color=color, ls=ls, lw=lw, alpha=0.55 if z == 1 else 1.0,
+                ax.plot(data.t, edge, color=color, ls=ls, lw=lw, alpha=1.0 if fixed else 0.55,
                         zorder=z, drawstyle="steps-post", label=None if j else lab)
     ax.set_xlabel("$t$ [s]")
     ax.set_ylabel(f"$z_{component + 1}$ = {labels[component]} [-]", fontsize=9)
     if linthresh is not None:
-        _symlog(ax, "y", linthresh)
+        symlog_axis(ax, "y", linthresh)
     spec = ax.get_subplotspec()
     if spec is not None and not spec.is_last_row():   # a column of axes shares the bottom's t
         ax.set_xlabel("")
@@ -136,7 +137,7 @@ def plot_l2_curves(data, ax: plt.Axes | None = None) -> plt.Axes:
     ax.set_xlabel("$t$ [s]")
     ax.set_ylabel(r"$\sqrt{\int_0^t z^\top z / \int_0^t d^2}$ [-]")
     ax.set_yscale("log")
-    _outside_legend(ax)
+    _below_legend(ax, ncol=3)
     return ax
 
 
@@ -155,21 +156,22 @@ def plot_sigma_timeline(data, ax: plt.Axes | None = None) -> plt.Axes:
     -------
     matplotlib Axes
     """
-    ax = _axes(ax, figsize=(10, 4))
+    ax = _axes(ax, figsize=(7, 3.2))
     variants = list(data.variants.items())
     as_controller = {"paper Q, measured ẋ": "FDSC", "paper Q, candidate ẋ": "FDSC (candidate ẋ)",
                      "our Q, measured ẋ": "FDSC (our Q)"}
     for k, (label, v) in enumerate(variants):
-        ax.fill_between(data.t, k, k + 0.8 * v.sigma, step="post", alpha=0.8,
-                        color=style(as_controller.get(label, label), k)["color"],
-                        label=f"{_label(label)}: {v.switches:,} switches")
+        ax.fill_between(data.t, k, k + 0.8 * v.sigma, step="post", alpha=0.8, lw=0,
+                        color=style(as_controller.get(label, label), k)["color"])
     for b in data.breaks[1:-1]:
         ax.axvline(b, color="k", ls=":", lw=1)
-    ax.set_yticks([k + 0.4 for k in range(len(variants))], [_label(lab) for lab, _ in variants],
-                  fontsize=8)
+    # each row named beside it, with its count of switches (no legend to match colours against)
+    names = [f"{_label(lab)}\n{v.switches:,} switches" for lab, v in variants]
+    ax.set_yticks([k + 0.4 for k in range(len(variants))], names, fontsize=LEGEND_FONTSIZE)
+    ax.set_ylim(-0.15, len(variants) - 0.05)
     ax.set_xlabel("$t$ [s]  (dotted: disturbance switches HF → LF → HF)")
-    ax.set_title(f"share of each {data.bin * 1e3:g} ms bin on PassC-HF ($K_2$): full bar = all "
-                 "of it, no bar = all on PassC-LF ($K_1$)", fontsize=9)
+    ax.set_title(f"share of each {data.bin * 1e3:g} ms bin on PassC-HF ($K_2$): full bar = all of it,\n"
+                 "no bar = all on PassC-LF ($K_1$)", fontsize=LEGEND_FONTSIZE)
     return ax
 
 
@@ -194,10 +196,10 @@ def plot_sweep(data, ax: plt.Axes | None = None, *, names: list | None = None, s
         Logarithmic energy axis.
     crossover : dict, optional
         ``{label: parameter value}`` drawn as vertical lines.
-    legend : {"inside", "below", "outside", None}, optional
+    legend : {"inside", "below", None}, optional
         Where to put the legend: inside the Axes where it covers the fewest points, below them
-        (for a figure as narrow as the text column), to their right, or nowhere (None: no
-        labels either, for a second call on the same Axes).
+        (for a figure as narrow as the text column), or nowhere (None: no labels either, for a
+        second call on the same Axes).
 
     Returns
     -------
@@ -219,9 +221,7 @@ def plot_sweep(data, ax: plt.Axes | None = None, *, names: list | None = None, s
     ax.set_ylabel(rf"$\int z^\top z\,dt$ over {span} [-]")
     if log:
         ax.set_yscale("log")
-    if legend == "outside":
-        _outside_legend(ax)
-    elif legend == "below":
+    if legend == "below":
         _below_legend(ax)
     elif legend == "inside":
         ax.legend(fontsize=LEGEND_FONTSIZE, loc="best")
@@ -261,7 +261,7 @@ def plot_p1(data, ax: plt.Axes | None = None, *, names: tuple | None = None) -> 
     ax.set_xlabel(r"$\rho_p$ [-]  (in-band dominance $\alpha(\Omega_3) = 1/(1 + \rho_p^2)$)")
     ax.set_ylabel(r"$\sqrt{\int z^\top z / \int d^2}$ over $[250, 500]$ [-]")
     ax.set_yscale("log")
-    _outside_legend(ax)
+    _below_legend(ax, ncol=2, y=-0.18)
     return ax
 
 
@@ -294,5 +294,5 @@ def plot_p2(data, ax: plt.Axes | None = None) -> plt.Axes:
     ax.set_yscale("log")
     ax.set_xlabel("window length $T_l$ [s]")
     ax.set_ylabel(r"largest $\sqrt{\int_{T_l} z^\top z / \int_{T_l} d^2}$ [-]")
-    _outside_legend(ax)
+    _below_legend(ax, ncol=3, y=-0.2)
     return ax
