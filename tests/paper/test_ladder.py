@@ -73,13 +73,33 @@ def test_the_stored_ladder_respects_its_bound_on_every_draw(example):
 
 @pytest.mark.parametrize("example", ["aircraft", "generic"])
 def test_the_stored_ladder_is_recomputed_from_its_controllers(example):
-    assert ld.recheck_ladder(_stored(), example)["largest_difference"] < 1e-6
+    # the record's ladder entry holds the recomputation (ld.recheck_ladder on the stored study's
+    # first test draws, from the stored controllers), computed with this checkout's sources
+    from fdsc.paper.record import reproduction_record
+
+    _stored()
+    (entry,) = [e for e in reproduction_record()["entries"] if e["id"] == "ladder"]
+    chk = entry["recomputed"][example]["recheck"]
+    assert chk["draws"] == ld.N_RECHECK and chk["rungs"] >= 8
+    assert chk["largest_difference"] < 1e-6
 
 
-def test_a_changed_stored_ratio_is_caught_by_the_recheck():
-    full = json.loads(json.dumps(_stored()))
+def test_a_changed_stored_ratio_is_caught_by_the_recheck(monkeypatch):
+    # the recomputation itself is the test above; here each draw's rungs are the stored ratios
+    # over a reference of 2 (what a recomputation that agrees returns), so that only the
+    # comparison is tested, without recomputing a draw
+    stored = _stored()
+
+    def agreeing_draw(example, index, seed, fs, settings):
+        lad = stored[example]["ladder"]
+        j = lad["test_indices"].index(index)
+        return {rung: 2.0 * ratios[j] for rung, ratios in lad["ratios"].items()}
+
+    monkeypatch.setattr(ld, "ladder_draw", agreeing_draw)
+    assert ld.recheck_ladder(stored, "generic")["largest_difference"] < 1e-15
+    full = json.loads(json.dumps(stored))
     full["generic"]["ladder"]["ratios"]["predictive"][0] *= 1.001
-    assert ld.recheck_ladder(full, "generic")["largest_difference"] > 5e-4
+    assert ld.recheck_ladder(full, "generic")["largest_difference"] == pytest.approx(1 - 1 / 1.001, rel=1e-9)
 
 
 def test_the_summary_pages_errata_are_the_reports():
