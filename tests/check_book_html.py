@@ -544,7 +544,8 @@ def table_problems(html):
 TYPED_OK_PAGES = {"changelog", "how_to_cite", "references", "api"}
 #: A number as prose prints a result: a decimal, an integer with thousands separators, or one of
 #: four or more digits (years excepted below); not a piece of a DOI, a version or a dotted name.
-_TYPED_NUMBER = re.compile(r"(?<![\w.,/#−-])(\d{1,3}(?:,\d{3})+(?:\.\d+)?|\d+\.\d+|\d{4,})(?![\w/]|\.\d|,\d{3})")
+_TYPED_NUMBER = re.compile(r"(?<![\w.,/#−-])(\d{1,3}(?:,\d{3})+(?:\.\d+)?|\d+\.\d+|\d{4,})"
+                           r"(?![\w/]|\.\d|,\d{3})")
 _MD_NOT_PROSE = (re.compile(r"```.*?```", re.S), re.compile(r"\$\$.*?\$\$", re.S),
                  re.compile(r"\{[\w:-]+\}`[^`]*`"), re.compile(r"\$[^$\n]*\$"), re.compile(r"`[^`]*`"),
                  re.compile(r"\]\([^)]*\)"), re.compile(r"^:[\w-]+:.*$", re.M),

@@ -313,15 +313,16 @@ def test_a_number_typed_on_one_page_and_printed_on_another_is_reported(tmp_path)
     notebook("intro", "Its HF peak, 1.605, is the worst of the four (T = 500 s, h = 0.2, in 2013).")
     notebook("ladder", "The ladder.", code='glue("w", Markdown("a peak of 1.605 and ×1.00 by definition"))')
     notebook("changelog", "Version 0.2: the peak 1.605 was printed.")
-    write(html, "passive.html", "<article><p>K_f3's HF peak is <span class='pasted-text'>1.605</span>.</p></article>")
+    write(html, "passive.html",
+          "<article><p>K_f3's HF peak is <span class='pasted-text'>1.605</span>.</p></article>")
     write(html, "intro.html", "<article><p>Its HF peak, 1.605, is the worst of the four.</p></article>")
     write(html, "ladder.html", "<article><p>a peak of 1.605 and ×1.00 by definition</p></article>")
     write(html, "changelog.html", "<article><p>Version 0.2: the peak 1.605 was printed.</p></article>")
     found = [p for p in check(html) if "is typed here" in p]
-    assert found == ["intro: 1.605 is typed here and printed on changelog, ladder, passive: print it from one "
-                     "computed value",
-                     "ladder: 1.605 is typed here and printed on changelog, intro, passive: print it from one "
-                     "computed value"]
+    assert found == ["intro: 1.605 is typed here and printed on changelog, ladder, passive: print it "
+                     "from one computed value",
+                     "ladder: 1.605 is typed here and printed on changelog, intro, passive: print it "
+                     "from one computed value"]
     # once the landing page and the code print the glued value, nothing is reported
     notebook("intro", "Its HF peak, {glue:text}`peak`, is the worst of the four.")
     notebook("ladder", "The ladder.", code='glue("w", Markdown(f"a peak of {peak} and ×1.00 by definition"))')
