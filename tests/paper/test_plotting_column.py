@@ -243,3 +243,21 @@ def test_end_labels_of_close_curves_stay_apart_in_their_colours(fig_ax):
     boxes = sorted((Text.get_window_extent(t) for t in texts.values()), key=lambda b: b.y0)
     assert all(lo.y1 <= hi.y0 + 0.5 for lo, hi in zip(boxes, boxes[1:], strict=False))
     assert figure_problems(fig) == []
+
+
+def test_every_chapter_that_draws_checks_its_figures_before_it_draws():
+    import json
+    import re
+    from pathlib import Path
+
+    book = Path(__file__).resolve().parents[2] / "book"
+    draws = re.compile(r"\bplt\.|\bplot_\w+\(|\.subplots\(")
+    unchecked = []
+    for path in sorted(book.glob("*.ipynb")):
+        code = ["".join(c["source"]) for c in json.loads(path.read_text(encoding="utf-8"))["cells"]
+                if c["cell_type"] == "code"]
+        first_draw = next((i for i, src in enumerate(code) if draws.search(src)), None)
+        first_check = next((i for i, src in enumerate(code) if "check_figures()" in src), None)
+        if first_draw is not None and (first_check is None or first_check > first_draw):
+            unchecked.append(path.stem)
+    assert unchecked == [], f"chapters that draw figures without check_figures() first: {unchecked}"
