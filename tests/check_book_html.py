@@ -82,7 +82,7 @@ MAX_CODE_SHARE = 0.15
 CODE_PAGES = {"own_plant.html"}
 #: Ids of the reproduction record's entries that read as code (the report's tables show them,
 #: prose must not); paper symbols such as K_f1 or Q_1 are not listed, nor ids that are also the
-#: name of a chapter (generic_example, monte_carlo, theorem1_counterexamples: the environment
+#: name of a chapter (generic_example, theorem1_counterexamples: the environment
 #: page's table lists chapters by file name).
 RECORD_IDS = (
     "alpha_localized", "alpha_mixed", "bound_e", "bound_f1", "bound_f2", "bound_f3",

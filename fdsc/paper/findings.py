@@ -46,10 +46,6 @@ class Findings:
         ``{fixed controller: cases where it is the best fixed controller}`` over those cases.
     switched_wins : int
         Cases where a switched controller has less energy than every fixed one.
-    monte_carlo : dict
-        ``{example: {"draws", "best", "win_rate", "median", "in_advance", "win_rate_advance"}}``
-        for the switched variant with the highest win rate against the best fixed controller of
-        each tone draw.
     lf_switches : int
         Switches of the printed law under the LF tones (paper Fig. 4's run).
     lf_horizon : float
@@ -91,7 +87,6 @@ class Findings:
     n_cases: int
     best_wins: dict
     switched_wins: int
-    monte_carlo: dict
     lf_switches: int
     lf_horizon: float
     lf_ratio: float
@@ -143,12 +138,6 @@ class Findings:
             "thm1_clean": count(self.thm1_clean), "thm1_sliding": count(self.thm1_sliding),
             "thm1_multiplier": times(self.thm1_multiplier),
         }
-        for example, mc in self.monte_carlo.items():
-            out |= {f"mc_{example}_draws": count(mc["draws"]), f"mc_{example}_best": mc["best"],
-                    f"mc_{example}_win_rate": pct(mc["win_rate"]),
-                    f"mc_{example}_median": times(mc["median"]),
-                    f"mc_{example}_in_advance": mc["in_advance"],
-                    f"mc_{example}_win_rate_advance": pct(mc["win_rate_advance"])}
         for example, ratio in self.ideal.items():
             out[f"ideal_{example}"] = times(ratio)
         out["law_sentence"] = law_sentence(self.law)
@@ -259,18 +248,6 @@ def _entries(record):
     return {e["id"]: e for e in record["entries"]}
 
 
-def _monte_carlo(entry):
-    out = {}
-    for example, data in entry["recomputed"].items():
-        rows = [(name, s["tones_oracle"]["win_rate"], s["tones_oracle"]["quantiles"][2],
-                 s["tones_advance"]["win_rate"]) for name, s in data["switched"].items()]
-        name, rate, median, advance = max(rows, key=lambda r: (r[1], -r[2]))
-        out[example] = {"draws": int(data["draws"]), "best": name, "win_rate": float(rate),
-                        "median": float(median), "in_advance": data["in_advance"],
-                        "win_rate_advance": float(advance)}
-    return out
-
-
 def _ideal_generic():
     from fdsc.paper.pays.generic_example import generic_study
 
@@ -297,7 +274,7 @@ def findings(record):
         If the record lacks an entry the findings need (named).
     """
     e = _entries(record)
-    needed = ("K_f1", "K_f2", "K_f3", "K_e", "comparators", "baselines", "monte_carlo", "supervisor",
+    needed = ("K_f1", "K_f2", "K_f3", "K_e", "comparators", "baselines", "supervisor",
               "mixed_crossover", "thm1_gammas", "theorem1_counterexamples", *PRINTED_BOUNDS)
     missing = [k for k in needed if k not in e]
     if missing:
@@ -322,7 +299,6 @@ def findings(record):
         verdicts=verdicts, gains_reproduced=gains, claims=claims, figures_redrawn=redrawn,
         figures_total=total,
         n_cases=sum(best_wins.values()), best_wins=best_wins, switched_wins=switched_wins,
-        monte_carlo=_monte_carlo(e["monte_carlo"]),
         lf_switches=int(lf_fig["switches"]["FDSC"]), lf_horizon=float(lf_fig["horizon"]),
         lf_ratio=stat["LF"]["FDSC"] / stat["LF"]["PassC-LF"],
         hf_open_loop_ratio=_hf_open_loop_steady(),

@@ -18,7 +18,6 @@ from fdsc.paper.pays import (
     fixed_controllers,
     generic_example,
     ladder,
-    monte_carlo,
 )
 from fdsc.paper.repairs import theorem1_counterexamples, three_mode, wellposed
 from fdsc.paper.reproduced import (
@@ -99,7 +98,7 @@ def figure_status(record):
 #: The chapters that contribute to the record, in the record's order (first the printed inputs).
 CHAPTERS = (inputs, frequency_ranges, gkyp_lemma, passive_controllers, frequency_selective, theorem1,
             theorem1_counterexamples, switching_law, stationary, nonstationary, wellposed, three_mode,
-            fixed_controllers, baselines, generic_example, monte_carlo, comparator_wins, disturbance_law,
+            fixed_controllers, baselines, generic_example, comparator_wins, disturbance_law,
             ladder)
 
 
@@ -144,7 +143,7 @@ JOBS_ENV = "FDSC_JOBS"
 
 # the chapters that take longest are started first (a scheduling hint: the record does not
 # depend on it); the others follow in the order of CHAPTERS
-_LONGEST_FIRST = (nonstationary, monte_carlo, passive_controllers, theorem1_counterexamples, wellposed,
+_LONGEST_FIRST = (nonstationary, passive_controllers, theorem1_counterexamples, wellposed,
                   ladder, fixed_controllers, frequency_selective, three_mode, generic_example,
                   disturbance_law, theorem1, baselines, stationary, gkyp_lemma)
 

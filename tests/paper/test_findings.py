@@ -40,8 +40,6 @@ def test_the_numbers_are_the_records(found):
     assert 0 < found.ideal["aircraft"] and 0 < found.ideal["generic"]
     # the K_f1 loop's fast pole lies above the HF edge, the airframe's modes below it
     assert found.airframe_mode < found.w_h < found.fast_pole
-    for mc in found.monte_carlo.values():
-        assert 0.0 <= mc["win_rate"] <= 1.0 and mc["draws"] >= 100
 
 
 def test_prose_is_formatted(found):

@@ -1,4 +1,4 @@
-"""Tests of the chapter module fdsc.paper.pays.monte_carlo (random disturbances)."""
+"""Tests of the study module fdsc.paper.pays.monte_carlo (random disturbances; not a chapter of the book)."""
 
 import numpy as np
 import pytest
@@ -78,18 +78,19 @@ def test_the_controller_chosen_in_advance_has_the_simulators_energies():
     np.testing.assert_allclose(r.energy[r.in_advance], simulated, rtol=1e-9)
 
 
-def test_aircraft_headline():
-    # measured: the best switched controller beats the best fixed one of the draw in 0 of 100
-    # tone draws; the controller chosen in advance is Part II's stored
-    # choice
+def test_aircraft_on_a_seeded_subset():
+    # the study on 10 tone draws and one noise record per α (the full study is not computed by the
+    # book or the tests): measured, the best switched controller beats the best comparator of the
+    # draw in none of them, with a median energy ×13.9 of it; the controller chosen in advance is
+    # Part II's stored choice
     from fdsc.paper.shared.fixed_choice import fixed_in_advance
 
-    r = mc.monte_carlo("aircraft")
-    assert r.alpha.size == mc.N_DRAWS and r.noise_alpha.size == len(mc.NOISE_ALPHAS) * mc.NOISE_REPEATS
+    r = mc.monte_carlo("aircraft", n=10, noise_repeats=1)
+    assert r.alpha.size == 10 and r.noise_alpha.size == len(mc.NOISE_ALPHAS)
     assert r.in_advance == fixed_in_advance("aircraft")[0] and r.in_advance in r.energy
     assert r.in_advance not in r.fixed            # the oracle is among the comparator set
     best = r.best_switched()
-    assert r.win_rate(best) < 0.1 and np.median(r.ratio(best)) > 3
+    assert r.win_rate(best) == 0.0 and np.median(r.ratio(best)) > 3
     assert sum(r.diverged.values()) == 0
     oracle = r.oracle()[1]
     for name in r.fixed:

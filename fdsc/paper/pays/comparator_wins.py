@@ -7,7 +7,6 @@ import numpy as np
 from fdsc.paper.pays.baselines import baselines
 from fdsc.paper.pays.fixed_designs import FAMILIES
 from fdsc.paper.pays.generic_example import generic_study
-from fdsc.paper.pays.monte_carlo import monte_carlo
 from fdsc.paper.pays.stored_study import load_full
 from fdsc.paper.shared.comparators import DEFINITION, best_fixed, comparators
 from fdsc.paper.shared.fixed_choice import fixed_in_advance
@@ -25,8 +24,8 @@ def record_part():
     """Record entry ``comparators`` (new): the set of each example, and who is best where.
 
     For the aircraft, every simulation case of the paper (the stationary LF and HF cases and the
-    ρ_p and ρ_t grids of paper Figs. 7 and 8) and the Monte-Carlo tone draws; for the generic
-    example, its stationary cases, its two sweeps and its tone draws.
+    ρ_p and ρ_t grids of paper Figs. 7 and 8); for the generic example, its stationary cases
+    and its two sweeps.
 
     Returns
     -------
@@ -42,10 +41,6 @@ def record_part():
     for family, comp in (("stationary", study.stationary), ("mixed", study.rho_p_sweep),
                          ("piecewise", study.rho_t_sweep)):
         best["generic"][family] = _counts(best_fixed(comp.energy, "generic")[0], gen)
-    for example, key in (("aircraft", "aircraft"), ("generic", "generic")):
-        mc = monte_carlo(example)
-        best[key]["monte carlo tones"] = _counts(best_fixed(mc.energy, example)[0],
-                                                 comparators(example))
     n_cases = sum(best["aircraft"][f][n] for f in ("stationary", "mixed", "piecewise") for n in air)
     wins = {n: sum(best["aircraft"][f][n] for f in ("stationary", "mixed", "piecewise")) for n in air}
     every, chosen = {}, {}

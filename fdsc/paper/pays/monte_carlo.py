@@ -1,4 +1,7 @@
-"""Chapter 'monte_carlo': does FDSC pay on random disturbances? Seeded draws of tones (random
+"""A Monte-Carlo study, not a chapter of the book: does FDSC pay on random disturbances? (The book
+answers on a class of disturbances, with equal information and a bound, in Part II; this study,
+run from Python, remains as the paper layer's example of a study scaled out on an executor.)
+Seeded draws of tones (random
 frequencies inside the bands, phases, amplitudes and dominance degree α) and band-limited
 coloured noise of prescribed α (through the sampled-input path, first-order hold), every
 controller of an example run under each (:meth:`fdsc.paper.shared.examples.Example.compare`), FDSC's
@@ -23,7 +26,6 @@ from fdsc.paper.reproduced.paper_cases import aircraft_example
 from fdsc.paper.shared.cache import cached
 from fdsc.paper.shared.examples import Example, beats
 from fdsc.paper.shared.fixed_choice import fixed_in_advance
-from fdsc.paper.shared.results import RecordPart, entry
 
 __all__ = [
     "SEED",
@@ -42,7 +44,6 @@ __all__ = [
     "band_noise",
     "MonteCarlo",
     "monte_carlo",
-    "record_part",
 ]
 
 #: Seeds of the draws, of the pilot set that picks the fixed controller in advance, of the noise.
@@ -445,16 +446,3 @@ def monte_carlo(example: str = "aircraft", *, n: int = N_DRAWS, seed: int = SEED
     diverged[choice] = int(np.sum(~np.isfinite(energy[choice])) + np.sum(~np.isfinite(noise_energy[choice])))
     return MonteCarlo(example, ex.names + (choice,), fixed, switched, int(seed), PILOT_SEED, NOISE_SEED,
                       draws.alpha, energy, choice, pilot, alphas, noise_energy, measured, diverged)
-
-
-def record_part():
-    """Record entry ``monte_carlo`` (new): seeds, quantiles and win rates of both examples.
-
-    Returns
-    -------
-    RecordPart
-    """
-    parts = {name: monte_carlo(name) for name in EXAMPLES}
-    note = " ".join(mc.pays() for mc in parts.values())
-    return RecordPart((entry("monte_carlo", "our addition: random disturbances (not in the paper)", None,
-                             {name: mc.to_record() for name, mc in parts.items()}, "new", note),))

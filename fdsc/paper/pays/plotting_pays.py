@@ -1,12 +1,12 @@
-"""Figures of the chapters 'simulations' and 'monte_carlo' (result in, Axes out)."""
+"""Figures of the chapter 'simulations' (result in, Axes out)."""
 
 import numpy as np
 
 from fdsc.paper.shared.plotting import _axes
-from fdsc.paper.shared.plotting_axes import LEGEND_FONTSIZE, _below_legend, _end_labels
+from fdsc.paper.shared.plotting_axes import LEGEND_FONTSIZE, _end_labels
 from fdsc.paper.shared.style import STYLES, band_color, style
 
-__all__ = ["STYLE", "plot_stationary_baselines", "plot_family_baselines", "plot_mc_ratio", "plot_mc_cdf"]
+__all__ = ["STYLE", "plot_stationary_baselines", "plot_family_baselines"]
 
 #: Line style of each controller of the comparisons (colour, marker, line style): the book's one
 #: style map (:data:`fdsc.paper.shared.style.STYLES`).
@@ -92,65 +92,4 @@ def plot_family_baselines(result, family, ax=None, *, names=None, log=True, lege
         _end_labels(ax)
     elif legend:
         ax.legend(fontsize=LEGEND_FONTSIZE, ncol=2)
-    return ax
-
-
-def plot_mc_ratio(result, ax=None, *, against="oracle"):
-    """FDSC's energy over the best fixed controller's, per draw, against the draw's α.
-
-    Parameters
-    ----------
-    result : MonteCarlo
-    ax : Axes, optional
-    against : {"oracle", "advance"}
-        The best comparator of each draw, or the one chosen in advance.
-
-    Returns
-    -------
-    Axes
-    """
-    ax = _axes(ax)
-    for k, n in enumerate(result.switched):
-        color, marker, _ = _style(n, k)
-        ax.scatter(result.alpha, result.ratio(n, against), s=9, color=color, marker=marker, lw=0.8,
-                   label=f"{n}, tones")
-        ax.scatter(result.noise_alpha, result.ratio(n, against, noise=True), s=40, facecolors="none",
-                   edgecolors=color, marker="o", lw=1.0, label=f"{n}, band noise")
-    ax.axhline(1.0, color="k", lw=0.8, ls=":")
-    ax.set_yscale("log")
-    ax.set_xlabel(r"HF share of the power $\alpha$ [-]")
-    ref = "the best comparator of the draw" if against == "oracle" else \
-        f"{result.in_advance} (fixed in advance)"
-    ax.set_ylabel(f"energy / energy of\n{ref} [-]")
-    ax.grid(True, which="both", alpha=0.3)
-    # below the Axes: inside, the legend would cover the reference ratio 1 or the draws
-    _below_legend(ax, ncol=2, y=-0.2)
-    return ax
-
-
-def plot_mc_cdf(result, ax=None, *, against="oracle"):
-    """Empirical distribution of FDSC's energy ratio over the tone draws.
-
-    Parameters
-    ----------
-    result : MonteCarlo
-    ax : Axes, optional
-    against : {"oracle", "advance"}
-
-    Returns
-    -------
-    Axes
-    """
-    ax = _axes(ax)
-    for k, n in enumerate(result.switched):
-        color, _, ls = _style(n, k)
-        r = np.sort(result.ratio(n, against))
-        ax.step(r, np.arange(1, r.size + 1) / r.size, where="post", color=color, ls=ls, label=n)
-    ax.axvline(1.0, color="k", lw=0.8, ls=":")
-    ax.set_xscale("log")
-    ax.set_xlabel("energy / energy of the best comparator of the draw [-]"
-                  if against == "oracle" else f"energy / energy of {result.in_advance} [-]")
-    ax.set_ylabel("share of draws [-]")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=LEGEND_FONTSIZE)
     return ax
