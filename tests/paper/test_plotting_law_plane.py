@@ -31,3 +31,30 @@ def test_a_member_shown_in_the_inset_is_labelled_there_only():
     assert _labels(inset) == ["A, B"] and _labels(ax) == ["C"]
     assert inset.get_xlim() == (0.37, 0.41)
     plt.close(fig)
+
+
+def test_every_family_is_drawn_and_a_family_without_a_style_is_refused():
+    import pytest
+
+    from fdsc.paper.shared.style import FAMILY_STYLES
+
+    # one point of every family the stored study has: each is drawn (a marker in its family's colour)
+    pts = {f"p{k}": (fam, 0.3 + 0.1 * k, 0.5) for k, fam in enumerate(FAMILY_STYLES)}
+    fig, ax = plt.subplots()
+    plot_fixed_plane(pts, "p0", ax)
+    drawn = {line.get_label() for line in ax.lines}
+    assert set(FAMILY_STYLES) <= drawn
+    plt.close(fig)
+    fig, ax = plt.subplots()
+    with pytest.raises(KeyError, match=r"points: the families \['adaptive'\] have no style"):
+        plot_fixed_plane({"a": ("adaptive", 0.4, 0.4)}, "a", ax)
+    plt.close(fig)
+
+
+def test_the_stored_studys_families_all_have_a_style():
+    from fdsc.paper.pays.stored_study import load_full
+    from fdsc.paper.shared.style import FAMILY_STYLES
+
+    full = load_full()
+    for example in ("aircraft", "generic"):
+        assert {v["family"] for v in full[example]["fixed_controllers"].values()} <= set(FAMILY_STYLES)

@@ -45,6 +45,8 @@ FAMILY_STYLES = {
     "dynamic front": ("#31a354", "D"),
     "H2": ("#756bb1", "^"),
     "tuned": ("k", "*"),
+    "tuned (x, ŵ)": ("#e7298a", "X"),
+    "optimal LTI": ("#a6761d", "h"),
 }
 
 #: Marks that are not data (the reference ratio 1, a limit, the ring of what was chosen): black,
