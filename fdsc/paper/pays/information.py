@@ -14,9 +14,11 @@ law's sampler; :func:`fdsc.measurement_noise.noise_density`):
 * the **best fixed controller (x)**: the stored study's, which reads no ŵ and sees no noise;
 * the **predictive law with a confidence check** (:class:`fdsc.confident.ConfidentPredictiveLaw`)
   on the redesigned optimal controller as its base, its samples carrying the noise (seeded per
-  draw), its window chosen on :data:`N_TRAIN` training draws at each level, plus the noise its
-  base's continuous filter reads (in expectation, as for the fixed controllers); at one level
-  also with a computation delay of one update;
+  draw), plus the noise its base's continuous filter reads (in expectation, as for the fixed
+  controllers); at one level also with a computation delay of one update. Its setting is chosen
+  on :data:`N_TRAIN` training draws at each level, by the mean log energy: one of the windows
+  :data:`WINDOWS`, or :data:`FALLBACK` (not predicting at all: the law is then the best fixed
+  controller at that level, which its training draws found better than every window);
 * the **non-causal limit** (stored): the bound, which reads d exactly.
 
 On the exact estimate, also the **model error** of :data:`SCALES`: the plant's A scaled, the
@@ -47,7 +49,8 @@ from fdsc.paper.pays.ladder import MAX_TONES, law_band
 from fdsc.paper.pays.stored_study import load_full, map_draws, stored_fixed_set
 from fdsc.paper.shared.stats import bootstrap_median
 
-__all__ = ["LEVELS", "N_TEST", "N_TRAIN", "WINDOWS", "CONFIDENCE", "DELAY_LEVEL", "SCALES", "INFO_FILE",
+__all__ = ["LEVELS", "N_TEST", "N_TRAIN", "WINDOWS", "FALLBACK", "CONFIDENCE", "DELAY_LEVEL", "SCALES",
+           "INFO_FILE", "reference_name",
            "level_design", "law_energy", "information_study", "summary", "model_error_summary",
            "load_information", "recheck", "main"]
 
@@ -56,7 +59,10 @@ LEVELS = (math.inf, 40.0, 20.0, 10.0, 0.0)
 #: Test draws per example (the stored study's first test draws) and training draws (its first).
 N_TEST, N_TRAIN = 24, 4
 #: The law's windows tried on the training draws (s); its confidence threshold and update.
-WINDOWS, CONFIDENCE, UPDATE = (2.0, 4.0), 0.5, 0.5
+WINDOWS, CONFIDENCE, UPDATE = (2.0, 4.0, 8.0, 12.0, 16.0), 0.5, 0.5
+#: The law's setting that does not predict: it runs the best fixed controller at that noise level
+#: (:func:`reference_name`), chosen where the training draws find it better than every window.
+FALLBACK = "fixed"
 #: The level at which the law also runs with a computation delay of one update.
 DELAY_LEVEL = 20.0
 #: The scales of A of the model-error variants (on the exact estimate).
@@ -69,6 +75,33 @@ RUNGS = ("limit", "predictive (confident)", "best fixed (x, ŵ)", "best fixed (x
 
 def _key(level):
     return "exact" if math.isinf(level) else f"{level:g} dB"
+
+
+def reference_name(design: dict) -> str:
+    """The best fixed controller at a noise level: of the best reading (x, ŵ) and the best reading
+    x alone, the one of least expected power with the noise (the reference of :func:`summary`,
+    and what the law runs in its setting :data:`FALLBACK`).
+
+    Parameters
+    ----------
+    design : dict
+        :func:`level_design`'s result, or a stored row (``best``, ``best_x``, ``expected_power``
+        or ``powers``).
+
+    Returns
+    -------
+    str
+        The controller's name (a stored name or ``"optimal LTI in noise"``).
+
+    Examples
+    --------
+    >>> reference_name({"best": "a", "best_x": "b", "powers": {"a": 1.0, "b": 2.0}})
+    'a'
+    >>> reference_name({"best": "a", "best_x": "b", "expected_power": {"a": 1.0, "b": 0.5}})
+    'b'
+    """
+    p = design["powers"] if "powers" in design else design["expected_power"]
+    return design["best"] if p[design["best"]] <= p[design["best_x"]] else design["best_x"]
 
 
 def level_design(example: str, level: float, full: dict) -> dict:
@@ -184,7 +217,7 @@ def information_study(full: dict, *, n_test: int = N_TEST, n_train: int = N_TRAI
     out = {"commit": build_commit(), "fingerprint": study_fingerprint("fdsc.paper.pays.information"),
            "stored_study": {"commit": full["commit"], "fingerprint": full["fingerprint"]},
            "seed": seed, "levels": [_key(v) for v in LEVELS], "n_test": n_test, "n_train": n_train,
-           "windows": list(WINDOWS), "confidence": CONFIDENCE, "update": UPDATE,
+           "windows": list(WINDOWS), "fallback": FALLBACK, "confidence": CONFIDENCE, "update": UPDATE,
            "delay_level": _key(DELAY_LEVEL)}
     designs = {(ex, lv): level_design(ex, lv, full) for ex in ("aircraft", "generic") for lv in LEVELS}
     # training: every window at every level
@@ -195,28 +228,42 @@ def information_study(full: dict, *, n_test: int = N_TEST, n_train: int = N_TRAI
     score = {}
     for a, e in zip(train_args, train, strict=True):
         score.setdefault((a[0], a[3], a[4]), []).append(math.log(e))
-    chosen = {(ex, lv): min(WINDOWS, key=lambda w, ex=ex, lv=lv: float(np.mean(score[ex, lv, w])))
+    # not predicting: the best fixed controller at the level on the same training draws (its exact
+    # energy on d plus the noise's expected energy, as on the test draws)
+    fsets = {ex: stored_fixed_set(full, ex) for ex in ("aircraft", "generic")}
+
+    def controller(ex, name, lv=math.inf):
+        return designs[ex, lv]["optimal"].controller if name == "optimal LTI in noise" \
+            else fsets[ex].controllers[name]
+
+    fb_args = [(ex, i, seed, controller(ex, reference_name(designs[ex, lv]), lv))
+               for ex in ("aircraft", "generic") for lv in LEVELS for i in range(n_train)]
+    fb_keys = [(ex, lv, i) for ex in ("aircraft", "generic") for lv in LEVELS for i in range(n_train)]
+    for (ex, lv, i), e in zip(fb_keys, map_draws(_fixed_energy, fb_args, executor), strict=True):
+        dz = designs[ex, lv]
+        noise = seeded_draw(ex, i, seed)[1].horizon * dz["noise"][reference_name(dz)]
+        score.setdefault((ex, lv, FALLBACK), []).append(math.log(e + noise))
+    settings = (*WINDOWS, FALLBACK)
+    chosen = {(ex, lv): min(settings, key=lambda w, ex=ex, lv=lv: float(np.mean(score[ex, lv, w])))
               for ex in ("aircraft", "generic") for lv in LEVELS}
     test_idx = {ex: full[ex]["test_indices"][:n_test] for ex in ("aircraft", "generic")}
     args = []
     for ex in ("aircraft", "generic"):
         for lv in LEVELS:
             opt = designs[ex, lv]["optimal"]
+            if chosen[ex, lv] == FALLBACK:
+                continue        # the law is the best fixed controller at this level: nothing to run
             for i in test_idx[ex]:
                 args.append((ex, i, seed, lv, chosen[ex, lv], opt.controller, opt.noise_power, 0.0, 1.0))
                 if lv == DELAY_LEVEL:
                     args.append((ex, i, seed, lv, chosen[ex, lv], opt.controller, opt.noise_power, UPDATE,
                                  1.0))
     # the model-error variants on the exact estimate
-    fsets = {ex: stored_fixed_set(full, ex) for ex in ("aircraft", "generic")}
-
-    def controller(ex, name):
-        return designs[ex, math.inf]["optimal"].controller if name == "optimal LTI in noise" \
-            else fsets[ex].controllers[name]
-
     n_plain = len(args)
     for ex in ("aircraft", "generic"):
         opt = designs[ex, math.inf]["optimal"]
+        if chosen[ex, math.inf] == FALLBACK:
+            continue
         for scale in SCALES:
             for i in test_idx[ex]:
                 args.append((ex, i, seed, math.inf, chosen[ex, math.inf], opt.controller, 0.0, 0.0, scale))
@@ -252,30 +299,42 @@ def information_study(full: dict, *, n_test: int = N_TEST, n_train: int = N_TRAI
                     clean = st["fixed_energy"][name][pos[i]]
                 return clean + horizon[i] * dz["noise"][name]
 
+            ref = reference_name(dz)
+
+            def ref_energy(i, ref=ref, best_x=best_x, st=st, pos=pos, fixed=fixed):
+                return st["fixed_energy"][best_x][pos[i]] if ref == best_x else fixed(ref, i)
+
+            fallback = chosen[ex, lv] == FALLBACK
+            law_e = [ref_energy(i) if fallback else law[ex, lv, i, 0.0] for i in test_idx[ex]]
             row = {"density": dz["density"], "variance": dz["variance"], "nyquist": dz["nyquist"],
-                   "best": best, "best_x": best_x, "window": chosen[ex, lv],
-                   "train_scores": {f"{w:g}": float(np.mean(score[ex, lv, w])) for w in WINDOWS},
+                   "best": best, "best_x": best_x, "window": chosen[ex, lv], "fallback": ref,
+                   "train_scores": {f"{w:g}" if w != FALLBACK else w: float(np.mean(score[ex, lv, w]))
+                                    for w in settings},
                    "expected_power": {k: dz["powers"][k] for k in (best, best_x, "optimal LTI in noise")},
                    "noise_power": {k: dz["noise"][k] for k in (best, best_x, "optimal LTI in noise")},
                    "optimal_states": dz["optimal"].controller.n_states,
                    "optimal_converged": bool(dz["optimal"].converged),
                    "energies": {"limit": [st["ladder"]["energies"]["limit"][pos[i]] for i in test_idx[ex]],
-                                "predictive (confident)": [law[ex, lv, i, 0.0] for i in test_idx[ex]],
+                                "predictive (confident)": law_e,
                                 "best fixed (x, ŵ)": [fixed(best, i) for i in test_idx[ex]],
                                 "best fixed (x)": [st["fixed_energy"][best_x][pos[i]] for i in test_idx[ex]],
                                 "optimal LTI in noise": [fixed("optimal LTI in noise", i)
                                                          for i in test_idx[ex]]}}
             if lv == DELAY_LEVEL:
-                row["energies"]["predictive (delay)"] = [law[ex, lv, i, UPDATE] for i in test_idx[ex]]
+                row["energies"]["predictive (delay)"] = law_e if fallback else [law[ex, lv, i, UPDATE]
+                                                                                for i in test_idx[ex]]
             res[_key(lv)] = row
         res["model_error"] = {}
+        d0 = designs[ex, math.inf]
         for scale in SCALES:
             rows = model_rows[ex, scale]
+            fb = "best fixed (x, ŵ)" if reference_name(d0) == d0["best"] else "best fixed (x)"
+            no_law = chosen[ex, math.inf] == FALLBACK
             res["model_error"][f"{scale:g}"] = {
-                "best": designs[ex, math.inf]["best"], "best_x": designs[ex, math.inf]["best_x"],
-                "window": chosen[ex, math.inf],
+                "best": d0["best"], "best_x": d0["best_x"], "window": chosen[ex, math.inf],
                 "energies": {"limit": [r["limit"] for r in rows],
-                             "predictive (confident)": [law_scaled[ex, scale, i] for i in test_idx[ex]],
+                             "predictive (confident)": [r[fb] for r in rows] if no_law
+                             else [law_scaled[ex, scale, i] for i in test_idx[ex]],
                              "best fixed (x, ŵ)": [r["best fixed (x, ŵ)"] for r in rows],
                              "best fixed (x)": [r["best fixed (x)"] for r in rows]}}
         out[ex] = res
@@ -311,8 +370,7 @@ def summary(info: dict, example: str) -> list:
     rows = []
     for key in info["levels"]:
         row = info[example][key]
-        p = row["expected_power"]
-        ref = "best fixed (x, ŵ)" if p[row["best"]] <= p[row["best_x"]] else "best fixed (x)"
+        ref = "best fixed (x, ŵ)" if reference_name(row) == row["best"] else "best fixed (x)"
         rows.append({"level": key} | _ratios(row, ref))
     return rows
 
@@ -379,7 +437,14 @@ def recheck(info: dict, full: dict, example: str = "generic", level: str = "20 d
     row, i = info[example][level], info[example]["test_indices"][k]
     dz = level_design(example, lv, full)
     opt = dz["optimal"]
-    law = law_energy(example, i, info["seed"], lv, row["window"], opt.controller, opt.noise_power)
+    if row["window"] == FALLBACK:
+        # the law is the best fixed controller at this level: its energy is that controller's
+        ref = reference_name(dz)
+        ctrl = (opt.controller if ref == "optimal LTI in noise"
+                else stored_fixed_set(full, example).controllers[ref])
+        law = _fixed_energy(example, i, info["seed"], ctrl) + info[example]["horizons"][k] * dz["noise"][ref]
+    else:
+        law = law_energy(example, i, info["seed"], lv, row["window"], opt.controller, opt.noise_power)
     best = dz["best"]
     if best == "optimal LTI in noise":
         clean = _fixed_energy(example, i, info["seed"], opt.controller)
