@@ -339,7 +339,12 @@ LEAKS = (
     ("an integer of five or more digits without separators",
      re.compile(r"(?<![\w.,/:#\u2212-])(?<!commit )\d{5,}(?![\w,/])(?!\.\d)")),
     ("dictionary keys", re.compile(r"(?<![\w)])[A-Za-z_][\w ]{0,11}: [A-Za-z_]\w{0,11}: [-\u2212\d]")),
+    ("a Python object's repr",
+     re.compile(r"<(?:function|bound method|built-in function|module|[\w.]+ object at) ")),
 )
+#: The repr of a function or object as HTML shows it (escaped), in a page's outputs.
+_OUTPUT_REPR = re.compile(r"&lt;(?:function|bound method|built-in function|module) [^&]{1,80}|"
+                          r"&lt;[\w.]{1,80} object at 0x[0-9a-f]+&gt;")
 #: Pages exempt from :data:`LEAKS`.
 LEAK_FREE_PAGES = GENERATED_PAGES | {"references.html"}
 _HEADING = re.compile(r"<h([1-6])\b[^>]*>(.*?)</h\1>", flags=re.S)
@@ -368,6 +373,8 @@ def leaks(text, page="", stems=()):
     >>> [w for w, _ in leaks("gamma^2 = 9.932e+05. After 196254 steps, see wellposed_laws",
     ...                      stems=["wellposed_laws"])]
     ['e-notation', 'an integer of five or more digits without separators', 'a notebook file name']
+    >>> [w for w, _ in leaks("<function fdsc.f.<locals>.g()> and <fdsc.Plant object at 0x7f>")]
+    ["a Python object's repr", "a Python object's repr"]
     >>> leaks("196,254 steps in 2023 at commit 0394711 (or commit 6e88619), doi 10.5281/zenodo.7990805, 1.5 s")
     []
     """
@@ -688,6 +695,9 @@ def check(root):
             problems += [f"{page.name}: {what} in the prose: '{snippet}'"
                          for what, snippet in leaks(visible_text(body), page.name, stems)[:MAX_TEX_REPORTS]]
             problems += [f"{page.name}: an empty heading or section: '{h}'" for h in empty_headings(body)]
+            # a cell whose last line returns an object shows its repr as the cell's output
+            problems += [f"{page.name}: a Python object's repr in a cell's output: '{m.group(0)}'"
+                         for m in list(_OUTPUT_REPR.finditer(body))[:MAX_TEX_REPORTS]]
         if page.name == ROOT_PAGE:
             body = article(page.read_text(encoding="utf-8"))
             headings = [" ".join(visible_text(re.sub(r'<a class="headerlink".*?</a>', "", m.group(2))).split())

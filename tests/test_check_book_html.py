@@ -327,3 +327,14 @@ def test_a_number_typed_on_one_page_and_printed_on_another_is_reported(tmp_path)
     notebook("intro", "Its HF peak, {glue:text}`peak`, is the worst of the four.")
     notebook("ladder", "The ladder.", code='glue("w", Markdown(f"a peak of {peak} and ×1.00 by definition"))')
     assert not [p for p in check(html) if "is typed here" in p]
+
+
+def test_a_python_repr_in_a_cells_output_is_reported(tmp_path):
+    # a cell whose last line returns a function shows its repr under the (hidden) code
+    out = ('<div class="cell_output docutils container"><div class="output text_plain"><pre>'
+           '&lt;function fdsc.paper.shared.plotting_axes.check_figures.&lt;locals&gt;.remove()&gt;</pre></div></div>')
+    write(tmp_path, "page.html", f"<article><p>{FILLER}</p>{out}</article>")
+    write(tmp_path, "ok.html", f"<article><p>{FILLER}</p><pre>x = 1  # a function of x</pre></article>")
+    found = [p for p in check(tmp_path) if "repr" in p]
+    assert found == ["page.html: a Python object's repr in a cell's output: "
+                     "'&lt;function fdsc.paper.shared.plotting_axes.check_figures.'"]
