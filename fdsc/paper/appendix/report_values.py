@@ -174,8 +174,8 @@ def number_text(x, digits=None):
     --------
     >>> number_text(15.0897), number_text(0.104946831, 4), number_text(1.0), number_text(None)
     ('15.0897', '0.1049', '1', '—')
-    >>> number_text(1.0735e-08), number_text(-2876000.0, 4), number_text(855900)
-    ('1.0735 × 10⁻⁸', '−2.876 × 10⁶', '855,900')
+    >>> number_text(1.0735e-08), number_text(-2876000.0, 4), number_text(855900), number_text(1010.0)
+    ('1.0735 × 10⁻⁸', '−2.876 × 10⁶', '855,900', '1,010')
     """
     if x is None:
         return "—"
@@ -188,9 +188,9 @@ def number_text(x, digits=None):
     if "e" in text:   # as the prose writes it, never e-notation
         mantissa, exponent = text.split("e")
         text = f"{mantissa} × 10{str(int(exponent)).translate(_SUPERSCRIPT)}"
-    else:             # thousands separators on five or more digits
+    else:             # thousands separators on four or more digits, as the prose writes them
         whole, dot, frac = text.partition(".")
-        if len(whole.lstrip("-")) >= 5:
+        if len(whole.lstrip("-")) >= 4:
             whole = f"{int(whole):,}"
         text = whole + dot + frac
     return text.replace("-", "−")

@@ -173,4 +173,4 @@ def record_part() -> RecordPart:
         f"sampling, horizon or tolerance). The search finds {count(cnt['clean_previous'])} such "
         f"clean divergent cases among {count(cnt['feasible'])} with the LMIs feasible; the LMIs "
         "hold for every pair of Hurwitz modes and every Q's, so they exclude nothing. Computed in "
-        "the chapter “Theorem 1 put to the test”.")))
+        "the chapter “Theorem 1”.")))

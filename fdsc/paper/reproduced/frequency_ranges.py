@@ -257,7 +257,7 @@ class PsiWeights:
             {"sign_violations": counts, "grid_points": int(self.omega.size),
              "mf_real_weight_max": self.mf_real_max},
             "match" if self.n_sign_violations == 0 else "differs",
-            f"weight of Ψ counted on {self.omega.size} grid points over {rng}: "
+            f"weight of Ψ counted on {count(self.omega.size)} grid points over {rng}: "
             f"{self.n_sign_violations} sign violations for LF and HF over all ω and for MF over "
             f"ω ≥ 0 (on the mirror interval [−ϖ_2, −ϖ_1] the MF weight is negative: see "
             f"the factorized weights of Proposition 1). For real signals only Re Ψ counts, and the MF "

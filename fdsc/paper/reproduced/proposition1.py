@@ -176,7 +176,7 @@ class Prop1WeightCheck:
             f"multiplied out, the printed LF product is ϖ_l² + ω² > 0 and the HF product "
             f"−ω² − ϖ_h² < 0 at every ω, while the weights are ϖ_l² − ω² and ω² − ϖ_h² "
             f"(wrong sign at {self.bands['LF'].n_wrong_sign} and {self.bands['HF'].n_wrong_sign} "
-            f"of {self.omega.size} grid points); the real factorizations (ϖ_l − ω)(ϖ_l + ω) and "
+            f"of {count(self.omega.size)} grid points); the real factorizations (ϖ_l − ω)(ϖ_l + ω) and "
             f"(ω − ϖ_h)(ω + ϖ_h), those of τ in the proof of Theorem 1, agree with the weight to "
             f"{self.max_rel_diff_corrected:.1e} relative. The MF product is the weight itself, "
             f"but its claim > 0 fails on the mirror interval [−ϖ_2, −ϖ_1] ({mf.n_claim_fails} of "

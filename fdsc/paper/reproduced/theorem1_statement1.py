@@ -318,8 +318,7 @@ class Statement1Check:
                   "the aircraft's autonomous switched loop from random initial states: every run "
                   "decays (largest final ratio ‖x(T)‖/‖x(0)‖ < 1) with the paper's Q's and with "
                   "ours; a numerical check on this example, not a proof. Statement (1) itself is "
-                  "false: see its counterexample, computed in the chapter “Theorem 1 put to the "
-                  "test”."),
+                  "false: see its counterexample, computed in the chapter “Theorem 1”."),
             entry("thm1_lyapunov_jumps", "Theorem 1, proof of statement (1), paper eqs. (37)–(40)",
                   PROOF_STATEMENT1,
                   {"max_ratio": j.max_ratio, "frac_up": j.frac_up, "n_switches": j.n_switches,
@@ -332,8 +331,8 @@ class Statement1Check:
                   f"autonomous runs with our Q's (d = 0) V jumps up at {pct(j.frac_up)} of the "
                   f"{count(j.n_switches)} switches, by up to a factor {num(j.max_ratio)}: computed in "
                   "the chapter “Theorem 1”. The jump condition that closes the gap, and runs whose "
-                  "V decreases between switches but diverges through its jumps, are in the chapter "
-                  "“Theorem 1 put to the test”."),
+                  "V decreases between switches but diverges through its jumps, are in that "
+                  "chapter."),
         ))
 
 
