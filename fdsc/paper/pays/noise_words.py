@@ -1,10 +1,15 @@
-"""Chapter 'ladder' and the landing page: one sentence, in words, of where predicting pays under
-white measurement noise (the noise study of :mod:`fdsc.paper.pays.information`, stored), so that
-both pages print it from one function."""
+"""Chapter 'ladder' and the landing page: the sentences both print from one function, so that
+they cannot drift apart: where predicting pays under white measurement noise (the noise study of
+:mod:`fdsc.paper.pays.information`, stored), and how the adaptive feedforward compares with the
+predictive law on the same draws (:mod:`fdsc.paper.pays.adaptive_rung`, stored)."""
 
-from fdsc.paper.pays.information import summary
+import numpy as np
 
-__all__ = ["noise_pays_words"]
+from fdsc.paper.pays.information import FALLBACK, summary
+from fdsc.paper.shared.prose import pct, times_ci
+from fdsc.paper.shared.stats import bootstrap_median
+
+__all__ = ["noise_pays_words", "adaptive_vs_predictive", "adaptive_words"]
 
 #: The examples in the words of the pages.
 WHERE = {"aircraft": "aircraft", "generic": "generic example"}
@@ -28,7 +33,9 @@ def noise_pays_words(info, rows=None, rung="predictive (confident)"):
     -------
     str
         E.g. ``"at every level down to 0 dB on the aircraft and down to 10 dB on the generic
-        example (not at 0 dB)"``.
+        example (not at 0 dB)"``; a level at which the law's training draws chose not to predict
+        (``info[example][level]["window"]`` is :data:`fdsc.paper.pays.information.FALLBACK`) is
+        said as such.
 
     Examples
     --------
@@ -37,6 +44,10 @@ def noise_pays_words(info, rows=None, rung="predictive (confident)"):
     ...         for e in ("aircraft", "generic")}
     >>> noise_pays_words({"levels": ["exact", "20 dB", "0 dB"]}, rows)
     'at every level down to 0 dB on the aircraft and down to 20 dB on the generic example (not at 0 dB)'
+    >>> info = {"levels": ["exact", "20 dB", "0 dB"], "generic": {"0 dB": {"window": "fixed"}}}
+    >>> noise_pays_words(info, rows).split(" and ")[1]  # doctest: +NORMALIZE_WHITESPACE
+    'down to 20 dB on the generic example (not at 0 dB, where it does not predict: its training
+    draws chose the best fixed controller)'
     """
     noisy = [k for k in info["levels"] if k != "exact"]
     rows = {e: summary(info, e) for e in WHERE} if rows is None else rows
@@ -46,9 +57,76 @@ def noise_pays_words(info, rows=None, rung="predictive (confident)"):
         if pays == noisy:
             parts.append(f"at every level down to {noisy[-1]} on the {name}")
         elif pays and pays == noisy[:len(pays)]:
-            parts.append(f"down to {pays[-1]} on the {name} (not at {', '.join(noisy[len(pays):])})")
+            rest = noisy[len(pays):]
+            fixed = [lv for lv in rest if info.get(e, {}).get(lv, {}).get("window") == FALLBACK]
+            why = (", where it does not predict: its training draws chose the best fixed controller"
+                   if fixed == rest else "")
+            parts.append(f"down to {pays[-1]} on the {name} (not at {', '.join(rest)}{why})")
         elif pays:
             parts.append(f"at {', '.join(pays)} on the {name}")
         else:
             parts.append(f"at no noise level on the {name}")
     return " and ".join(parts)
+
+
+def adaptive_vs_predictive(adapt, example):
+    """The adaptive feedforward over the predictive law, draw by draw, on the adaptive study's
+    test draws: the median of the per-draw ratio with its bootstrap 95 % interval, and the share
+    of draws on which the adaptive law has less energy.
+
+    Parameters
+    ----------
+    adapt : dict
+        The stored adaptive study (:func:`fdsc.paper.pays.adaptive_rung.load_adaptive`).
+    example : {"aircraft", "generic"}
+
+    Returns
+    -------
+    dict
+        ``{"median", "low", "high", "win_rate", "draws"}``.
+    """
+    r = adapt[example]
+    x = np.asarray(r["energies"], float) / np.asarray(r["predictive_energies"], float)
+    med, lo, hi = bootstrap_median(x)
+    return {"median": med, "low": lo, "high": hi, "win_rate": float(np.mean(x < 1.0)), "draws": int(x.size)}
+
+
+def adaptive_words(adapt, numbers=True):
+    """Which of the adaptive feedforward and the predictive law does better on each example, by
+    the paired comparison of :func:`adaptive_vs_predictive` (better only where the whole 95 %
+    interval of the per-draw ratio lies on one side of 1), in words.
+
+    Parameters
+    ----------
+    adapt : dict
+        The stored adaptive study.
+    numbers : bool, optional
+        False: the verdicts alone (the landing page's short form).
+
+    Returns
+    -------
+    str
+        E.g. ``"draw by draw, the adaptive law over the predictive law has ×0.987 [0.979, 1.00]
+        on the aircraft (less energy on 62 % of the draws: neither does better) and ..."``.
+
+    Examples
+    --------
+    >>> a = {e: {"energies": [1.0, 2.0, 3.0, 4.0], "predictive_energies": [1.1, 2.2, 3.3, 4.4]}
+    ...      for e in WHERE}
+    >>> adaptive_words(a).split(" and ")[0]  # doctest: +NORMALIZE_WHITESPACE
+    'draw by draw, the adaptive law over the predictive law has ×0.909 [0.909, 0.909] on the
+    aircraft (less energy on 100 % of the draws: the adaptive law does better)'
+    >>> adaptive_words(a, numbers=False)
+    'draw by draw, the adaptive law does better on the aircraft and on the generic example'
+    """
+    parts, verdicts = [], {}
+    for e, name in WHERE.items():
+        c = adaptive_vs_predictive(adapt, e)
+        verdict = ("the adaptive law does better" if c["high"] < 1.0 else
+                   "the predictive law does better" if c["low"] > 1.0 else "neither does better")
+        parts.append(f"{times_ci(c)} on the {name} (less energy on {pct(c['win_rate'])} of the draws: "
+                     f"{verdict})")
+        verdicts.setdefault(verdict, []).append(f"on the {name}")
+    if not numbers:
+        return "draw by draw, " + "; ".join(f"{v} {' and '.join(w)}" for v, w in verdicts.items())
+    return "draw by draw, the adaptive law over the predictive law has " + " and ".join(parts)
