@@ -94,6 +94,29 @@ def test_the_summaries_read_the_stored_energies(info):
         assert {r["scale"] for r in inf.model_error_summary(info, e)} == set(inf.SCALES)
 
 
+@pytest.mark.parametrize("e", EXAMPLES)
+def test_the_laws_setting_is_the_best_on_its_training_draws_and_not_predicting_is_the_reference(info, e):
+    assert info["windows"] == list(inf.WINDOWS) and info["fallback"] == inf.FALLBACK
+    for key in info["levels"]:
+        row = info[e][key]
+        assert set(row["train_scores"]) == {f"{w:g}" for w in inf.WINDOWS} | {inf.FALLBACK}
+        best = min(row["train_scores"], key=row["train_scores"].get)
+        assert row["window"] == (inf.FALLBACK if best == inf.FALLBACK else float(best))
+        # the controller the law runs when it does not predict is the reference of the summary
+        assert row["fallback"] == inf.reference_name(row)
+        (r,) = [r for r in inf.summary(info, e) if r["level"] == key]
+        assert r["reference"] == ("best fixed (x, ŵ)" if row["fallback"] == row["best"] else "best fixed (x)")
+        if row["window"] == inf.FALLBACK:
+            assert row["energies"]["predictive (confident)"] == row["energies"][r["reference"]]
+            assert r["predictive (confident)"][:3] == (1.0, 1.0, 1.0)
+
+
+def test_the_reference_is_the_controller_of_least_expected_power():
+    row = {"best": "a", "best_x": "b", "expected_power": {"a": 2.0, "b": 1.0}}
+    assert inf.reference_name(row) == "b"
+    assert inf.reference_name(row | {"expected_power": {"a": 1.0, "b": 1.0}}) == "a"   # a tie reads ŵ
+
+
 def test_the_adaptive_rung_chose_its_setting_on_training_draws(adapt, full):
     assert adapt["stored_study"] == {"commit": full["commit"], "fingerprint": full["fingerprint"]}
     for e in EXAMPLES:
@@ -106,3 +129,17 @@ def test_the_adaptive_rung_chose_its_setting_on_training_draws(adapt, full):
         assert np.all(np.asarray(r["energies"]) >= np.asarray(r["limit_energies"]) * (1 - 1e-9))
         s = ar.summary(adapt, e)
         assert s["limit"][0] < 1.0 and set(s) == {"adaptive", "predictive", "limit"}
+
+
+def test_the_recheck_of_a_level_where_the_law_does_not_predict_recomputes_the_reference(info, full):
+    # a copy of the stored study with the law set not to predict at 20 dB on the generic example:
+    # the recheck then recomputes the reference controller's energy, which the stored row holds
+    import copy
+
+    bad = copy.deepcopy(info)
+    row = bad["generic"]["20 dB"]
+    row["window"] = inf.FALLBACK
+    ref = "best fixed (x, ŵ)" if inf.reference_name(row) == row["best"] else "best fixed (x)"
+    out = inf.recheck(bad, full, "generic", "20 dB", 0)
+    assert out["law"][1] == pytest.approx(row["energies"][ref][0], rel=1e-6)
+    assert out["fixed"][1] == pytest.approx(out["fixed"][0], rel=1e-6)
