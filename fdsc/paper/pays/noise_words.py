@@ -44,6 +44,9 @@ def noise_pays_words(info, rows=None, rung="predictive (confident)"):
     ...         for e in ("aircraft", "generic")}
     >>> noise_pays_words({"levels": ["exact", "20 dB", "0 dB"]}, rows)
     'at every level down to 0 dB on the aircraft and down to 20 dB on the generic example (not at 0 dB)'
+    >>> same = {e: [row("exact", 0.9), row("20 dB", 0.95), row("0 dB", 0.99)] for e in rows}
+    >>> noise_pays_words({"levels": ["exact", "20 dB", "0 dB"]}, same)
+    'at every level down to 0 dB on both examples'
     >>> info = {"levels": ["exact", "20 dB", "0 dB"], "generic": {"0 dB": {"window": "fixed"}}}
     >>> noise_pays_words(info, rows).split(" and ")[1]  # doctest: +NORMALIZE_WHITESPACE
     'down to 20 dB on the generic example (not at 0 dB, where it does not predict: its training
@@ -66,6 +69,10 @@ def noise_pays_words(info, rows=None, rung="predictive (confident)"):
             parts.append(f"at {', '.join(pays)} on the {name}")
         else:
             parts.append(f"at no noise level on the {name}")
+    names = [f"on the {n}" for n in WHERE.values()]
+    alike = {p.replace(n, "") for p, n in zip(parts, names, strict=True)}
+    if len(alike) == 1 and all(n in p for p, n in zip(parts, names, strict=True)):
+        return parts[0].replace(names[0], "on both examples")
     return " and ".join(parts)
 
 
