@@ -188,7 +188,8 @@ def variant_law_study(full: dict, *, n_train: int = N_TRAIN, executor=None) -> d
     test = {k: _test_indices(k[1]) for k in keys}
     law_args = by_cost([(ex, v, i, seed, chosen[ex, v], designs[ex, v].controller)
                         for ex, v in keys if chosen[ex, v] != FALLBACK for i in test[ex, v]])
-    laws = {(a[0], a[1], a[2]): r for a, r in zip(law_args, map_draws(law_run, law_args, executor), strict=True)}
+    laws = {(a[0], a[1], a[2]): r
+            for a, r in zip(law_args, map_draws(law_run, law_args, executor), strict=True)}
     ref_args = [(ex, v, i, seed, designs[ex, v].controller) for ex, v in keys for i in test[ex, v]]
     refs = dict(zip([(a[0], a[1], a[2]) for a in ref_args], map_draws(base_energy, ref_args, executor),
                     strict=True))
@@ -296,7 +297,8 @@ def recheck(res: dict, example: str = "generic", variant: str = "noise", k: int 
     i = row["test_indices"][k]
     base = variant_base(example, variant).controller
     fixed = base_energy(example, variant, i, res["seed"], base)
-    law = fixed if row["window"] == FALLBACK else law_run(example, variant, i, res["seed"], row["window"], base)[0]
+    law = (fixed if row["window"] == FALLBACK
+           else law_run(example, variant, i, res["seed"], row["window"], base)[0])
     return {"law": (row["energies"]["predictive (confident)"][k], law),
             "fixed": (row["energies"]["best fixed (x, ŵ)"][k], fixed)}
 
@@ -345,7 +347,8 @@ def main(argv=None) -> int:
                    "load_before": round(load0, 2), "load_after": round(os.getloadavg()[0], 2)}
     out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(json.dumps(res, indent=1) + "\n", encoding="utf-8")
-    print(f"variant laws: {res['seconds']:.0f} s on {args.workers} workers; written to {out}", file=sys.stderr)
+    print(f"variant laws: {res['seconds']:.0f} s on {args.workers} workers; written to {out}",
+          file=sys.stderr)
     return 0
 
 
