@@ -51,6 +51,9 @@ def test_sweep_claims(study):
     # FDSC loses to PassC-LF before ρ_p = 0.2 (bisected near 0.12): the ≤ 0.2 claim is only partly true
     assert fig7["the proposed FDSC gives rise t"].verdict == "PARTLY"
     assert fig7["in case that the out-of-band c"].verdict == "PASS"
+    # a count, as the report prints it: PASS means every grid point ρ_p > 0.2
+    k, n = fig7["in case that the out-of-band c"].value.split(" of ")
+    assert k == n and int(n) > 1
     p2 = by_source["Sec. II-C, objective (P.2)"][0]
     assert set(p2.value) == {"1 s", "10 s", "100 s"}
     json.dumps([r.to_dict() for r in rows], allow_nan=False)

@@ -56,6 +56,9 @@ def test_theorem1_table_rows_and_reference_gains():
     assert_allclose(table.designs[0].gammas, our_q().gammas, rtol=1e-9)
     rows = table.rows()
     assert [r["source"] for r in rows] == [r.source for r in table.feasible]
+    # the γ fixed at γ_tol reads as the prose prints it (10, not 10.000); a bisected γ has 5 digits
+    printed = table.table_rows()[-1]
+    assert printed["gamma_tol"] == "10" and "10" in (printed["gamma_1"], printed["gamma_2"])
     part = table.to_record()
     _check_part(part, ("thm1_gammas", "thm1_mode_reference"))
     ref = part.entries[1]["recomputed"]

@@ -163,8 +163,13 @@ class Theorem1Table:
         def tol(x):
             return "—" if x is None or not np.isfinite(x) else _whole(x)
 
+        def gamma(x):
+            # a γ fixed at γ_tol (paper Remark 4) is whole and printed as the prose prints it;
+            # a least γ found by bisection, to five significant digits
+            return _whole(x) if float(x).is_integer() else num(float(x), 5)
+
         return [{**r, "gamma_tol": tol(r["gamma_tol"]),
-                 "gamma_1": num(float(r["gamma_1"]), 5), "gamma_2": num(float(r["gamma_2"]), 5),
+                 "gamma_1": gamma(r["gamma_1"]), "gamma_2": gamma(r["gamma_2"]),
                  "Q_1": matrix_text(r["Q_1"]), "Q_2": matrix_text(r["Q_2"]),
                  "max_eig": num(float(r["max_eig"]), 2)} for r in self.rows()]
 
