@@ -34,7 +34,8 @@ __all__ = ["GRID", "N_TEST", "N_TRAIN", "ADAPTIVE_FILE", "adaptive_energy", "ada
            "load_adaptive", "main"]
 
 #: The settings tried on the training draws: (taps, memory in s, regularization).
-GRID = tuple((taps, memory, reg) for taps, memory in ((16, 4.0), (32, 8.0)) for reg in (1e-3, 1e-2, 1e-1))
+GRID = tuple((taps, memory, reg) for taps, memory in ((16, 4.0), (32, 8.0), (64, 16.0))
+             for reg in (1e-4, 1e-3, 1e-2, 1e-1, 1.0))
 #: Test draws per example (the stored study's first) and training draws (its first).
 N_TEST, N_TRAIN = 24, 4
 #: The stored result, which the book reads.
