@@ -22,6 +22,9 @@ python -m fdsc information [--workers W] [--replace]
 python -m fdsc adaptive-rung [--workers W] [--replace]
                                      the ladder's adaptive-regulation rung on the stored study's
                                      draws (fdsc.paper.pays.adaptive_rung)
+python -m fdsc observer-rung [--workers W] [--replace]
+                                     the ladder with ŵ from a disturbance observer on noisy
+                                     measurements of x (fdsc.paper.pays.observer_rung)
 python -m fdsc variant-laws [--workers W] [--replace]
                                      the predictive law with a confidence check on the class's
                                      variants (fdsc.paper.pays.variant_laws)

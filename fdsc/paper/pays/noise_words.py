@@ -1,7 +1,9 @@
 """Chapter 'ladder' and the landing page: the sentences both print from one function, so that
 they cannot drift apart: where predicting pays under white measurement noise (the noise study of
-:mod:`fdsc.paper.pays.information`, stored), and how the adaptive feedforward compares with the
-predictive law on the same draws (:mod:`fdsc.paper.pays.adaptive_rung`, stored)."""
+:mod:`fdsc.paper.pays.information`, stored), how the adaptive feedforward compares with the
+predictive law on the same draws (:mod:`fdsc.paper.pays.adaptive_rung`, stored), and how the
+predictive law with a confidence check fares on the class's variants
+(:mod:`fdsc.paper.pays.variant_laws`, stored)."""
 
 import numpy as np
 
@@ -9,10 +11,15 @@ from fdsc.paper.pays.information import FALLBACK, summary
 from fdsc.paper.shared.prose import pct, times_ci
 from fdsc.paper.shared.stats import bootstrap_median
 
-__all__ = ["noise_pays_words", "adaptive_vs_predictive", "adaptive_words"]
+__all__ = ["noise_pays_words", "adaptive_vs_predictive", "adaptive_words", "variant_verdicts",
+           "variant_words", "VARIANT_CLAUSE"]
 
 #: The examples in the words of the pages.
 WHERE = {"aircraft": "aircraft", "generic": "generic example"}
+#: The class's variants as a clause ("where ...").
+VARIANT_CLAUSE = {"shorter": "segments are 4× shorter", "longer": "segments are 4× longer",
+                  "alpha": "the dominating band's share α is anywhere in [0.5, 1]",
+                  "noise": "every segment is band-limited noise"}
 
 
 def noise_pays_words(info, rows=None, rung="predictive (confident)"):
@@ -137,3 +144,106 @@ def adaptive_words(adapt, numbers=True):
     if not numbers:
         return "draw by draw, " + "; ".join(f"{v} {' and '.join(w)}" for v, w in verdicts.items())
     return "draw by draw, the adaptive law over the predictive law has " + " and ".join(parts)
+
+
+def variant_verdicts(rows):
+    """Per example and variant, how the law with a confidence check stands against the variant's
+    best fixed controller (x, ŵ), by the bootstrap 95 % interval of its per-draw ratio: ``"gain"``
+    (the whole interval below 1), ``"fixed"`` (its training draws chose not to predict: it is
+    that controller), ``"no loss"`` (median at most 1, the interval reaching 1), ``"loss"`` (the
+    whole interval above 1) or ``"unclear"`` (median above 1, the interval reaching below 1).
+
+    Parameters
+    ----------
+    rows : dict
+        ``{example: summary}``, each :func:`fdsc.paper.pays.variant_laws.summary`.
+
+    Returns
+    -------
+    dict
+        ``{(example, variant): verdict}``.
+
+    Examples
+    --------
+    >>> def law(m, lo, hi):
+    ...     return {"predictive (confident)": {"median": m, "low": lo, "high": hi}, "window": 4.0}
+    >>> v = variant_verdicts({"aircraft": {"a": law(0.9, 0.8, 0.95), "b": law(1.0, 0.99, 1.01)},
+    ...                       "generic": {"a": law(1.1, 1.05, 1.2), "b": law(1.01, 0.98, 1.04)}})
+    >>> [v[k] for k in sorted(v)]
+    ['gain', 'no loss', 'loss', 'unclear']
+    """
+    out = {}
+    for e, rs in rows.items():
+        for v, r in rs.items():
+            q = r["predictive (confident)"]
+            out[e, v] = ("fixed" if r["window"] == FALLBACK else "gain" if q["high"] < 1.0 else
+                         "loss" if q["low"] > 1.0 else "no loss" if q["median"] <= 1.0 else "unclear")
+    return out
+
+
+def _listed(items):
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
+
+
+def variant_words(rows, numbers=True):
+    """Where on the class's variants the law with a confidence check gains, does not predict, or
+    loses, in words (:func:`variant_verdicts`).
+
+    Parameters
+    ----------
+    rows : dict
+        ``{example: summary}``, each :func:`fdsc.paper.pays.variant_laws.summary`.
+    numbers : bool, optional
+        False: the verdicts alone (the landing page's short form).
+
+    Returns
+    -------
+    str
+        E.g. ``"it loses on no variant: it gains (its whole interval below 1) where ..."``.
+
+    Examples
+    --------
+    >>> def law(m, lo, hi, w=4.0):
+    ...     return {"predictive (confident)": {"median": m, "low": lo, "high": hi}, "window": w}
+    >>> rows = {"aircraft": {"shorter": law(0.9, 0.8, 0.95), "noise": law(1.0, 1.0, 1.0, "fixed")},
+    ...         "generic": {"shorter": law(0.8, 0.7, 0.9), "noise": law(1.0, 1.0, 1.0, "fixed")}}
+    >>> variant_words(rows, numbers=False)  # doctest: +NORMALIZE_WHITESPACE
+    'it loses on no variant: it gains (its whole interval below 1) where segments are 4× shorter on
+    both examples, and where every segment is band-limited noise on both examples, its training
+    draws chose not to predict (it is then the best fixed controller)'
+    """
+    verdict = variant_verdicts(rows)
+    examples = list(rows)
+    variants = list(dict.fromkeys(v for e in examples for v in rows[e]))
+
+    def where(kind):
+        """The variants with this verdict, each with the examples it holds on."""
+        parts = []
+        for v in variants:
+            es = [e for e in examples if verdict.get((e, v)) == kind]
+            if not es:
+                continue
+            on = "on both examples" if len(es) == len(examples) == 2 else " and ".join(
+                f"on the {WHERE[e]}" for e in es)
+            nums = ""
+            if numbers and kind != "fixed":
+                nums = " (" + "; ".join(f"{times_ci(rows[e][v]['predictive (confident)'])}"
+                                        + (f" on the {WHERE[e]}" if len(es) > 1 else "") for e in es) + ")"
+            parts.append(f"{VARIANT_CLAUSE.get(v, v)} {on}{nums}")
+        return parts
+
+    losses, unclear = where("loss"), where("unclear")
+    head = ("it loses on no variant" if not losses and not unclear else
+            "it loses where " + _listed(losses) if losses else "it is not shown to gain or lose where "
+            + _listed(unclear))
+    if losses and unclear:
+        head += ", and is not shown to gain or lose where " + _listed(unclear)
+    tail = []
+    if where("gain"):
+        tail.append("it gains (its whole interval below 1) where " + _listed(where("gain")))
+    if where("no loss"):
+        tail.append("its median is at most the fixed controller's energy where " + _listed(where("no loss")))
+    if where("fixed"):
+        tail.append("where " + _listed(where("fixed")) + ", its training draws chose not to predict "
+                    "(it is then the best fixed controller)")
+    return head + (": " + ", and ".join(tail) if tail else "")

@@ -1,0 +1,709 @@
+"""The ladder with ŵ built by a disturbance observer from noisy measurements of x (no ẋ measured).
+
+Every controller reads the state through a sensor, ``x_m = x + v``, v white Gaussian noise on each
+state, band-limited to the Nyquist frequency Ω of the predictive law's sampler, at a stated
+signal-to-noise ratio per state (:data:`LEVELS`: the state's mean power on the class, in the loop
+of the best fixed controller with the exact estimate, over the noise's variance in that band).
+Whatever reads ŵ reads it from one **disturbance observer**, part of the controller and the same for
+every rung: the steady-state Kalman–Bucy filter of the plant augmented with d as a random walk
+of intensity q (:func:`kalman_bucy`), run in continuous time as the laws' feedforward is, its
+input u known to it (the controller computes u). Its q is chosen, at each level, for the least
+expected cost of the best fixed controller with the exact estimate when it reads ŵ through the
+observer (:func:`choose_intensity`; a closed form, no draws).
+
+Because the observer knows u, its error does not depend on u: for any controller, in closed
+loop, ``ŵ = F(s) d + N(s) v`` with F and N fixed (:func:`observer_filters`; ``F(0) = 1``). So:
+
+* a **fixed controller** reading x and ŵ becomes, with the observer, one controller reading x_m
+  alone (:func:`with_observer`), whose energy on a draw is exact on d plus the noise's expected
+  energy (the horizon times its loop's power from v, :func:`sensor_noise_power`: the cross
+  term has mean zero); a controller reading x alone reads x_m;
+* the **predictive law with a confidence check** keeps its gain and base, its base now reading
+  ``F(s) d`` (:func:`filtered_base`: the same loop on d as the fixed controller with the
+  observer), its identifications reading samples of ``F(s) d + N(s) v`` (the noise drawn for
+  each identification's window from the stationary law of ``N(s) v``, seeded), and it divides
+  each identified tone by ``F(jω)`` (it knows its observer) before correcting; plus the noise's
+  expected energy through its gain and base, as for the fixed controller.
+
+At each level: the best fixed controller, chosen by its expected power among the stored study's
+controllers (those reading ŵ through the observer; not redesigned for it), the best reading x
+alone, the law (its setting chosen on training draws among the windows of
+:data:`fdsc.paper.pays.information.WINDOWS` and not predicting), and the stored non-causal limit
+(which reads d exactly), on the first test draws of the stored study.
+
+``python -m fdsc observer-rung [--workers W] [--replace]`` runs it and writes
+:data:`OBSERVER_FILE`, which the ladder chapter reads.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+from scipy.linalg import expm, solve_continuous_are, solve_continuous_lyapunov
+
+from fdsc._closed_energy import closed_form_energies
+from fdsc.confident import ConfidentPredictiveLaw
+from fdsc.controller import Controller
+from fdsc.measurement_noise import noise_power
+from fdsc.optimal_lti import expected_power
+from fdsc.paper.pays.disturbance_law_draws import _example, seeded_draw, segment_class
+from fdsc.paper.pays.information import CONFIDENCE, FALLBACK, N_TEST, N_TRAIN, UPDATE, WINDOWS
+from fdsc.paper.pays.ladder import MAX_TONES, law_band
+from fdsc.paper.pays.stored_study import load_full, map_draws, stored_fixed_set
+from fdsc.paper.shared.stats import bootstrap_median
+from fdsc.plant import LTISystem
+from fdsc.signals import Piecewise, Sinusoids
+from fdsc.simulate import particular
+
+__all__ = ["LEVELS", "INTENSITIES", "OBSERVER_FILE", "kalman_bucy", "observer_filters", "with_observer",
+           "filtered_base", "sensor_loop", "sensor_noise_power", "sensor_densities", "choose_intensity",
+           "ObservedLaw", "level_design", "law_energy", "fixed_energy", "observer_study", "summary",
+           "load_observer", "main"]
+
+#: Sensor signal-to-noise ratios per state (dB).
+LEVELS = (20.0, 0.0)
+#: The observer's random-walk intensities tried, times the class's power (1/s).
+INTENSITIES = tuple(10.0 ** k for k in range(-2, 9))
+#: The stored result, which the book reads.
+OBSERVER_FILE = Path("book") / "data" / "observer_rung.json"
+EXAMPLES = ("aircraft", "generic")
+
+
+def kalman_bucy(plant, densities, q: float) -> tuple:
+    """The steady-state Kalman–Bucy filter of the plant augmented with d as a random walk.
+
+    The augmented state ``ξ = (x, d)`` obeys ``ξ' = F_a ξ + B_u u + G ω`` (``G = [0; 1]``, ω white
+    of intensity q) and is measured as ``x_m = H ξ + v`` (``H = [I, 0]``, v white of intensity
+    ``diag(densities)``); the filter is ``ξ̂' = F_a ξ̂ + B_u u + L (x_m − H ξ̂)`` with
+    ``L = P Hᵀ V⁻¹``, P the stabilizing solution of ``F_a P + P F_aᵀ − P Hᵀ V⁻¹ H P + q G Gᵀ = 0``.
+
+    Parameters
+    ----------
+    plant : Plant
+        One disturbance input.
+    densities : (n,) array_like
+        The noise's two-sided spectral density on each state (> 0).
+    q : float
+        The random walk's intensity (> 0).
+
+    Returns
+    -------
+    (Ae, L, G, P) : tuple of ndarray
+        The error dynamics ``Ae = F_a − L H`` (Hurwitz), the gain, G and P.
+    """
+    n = plant.n_states
+    S = np.asarray(densities, dtype=float).reshape(-1)
+    if S.shape != (n,) or not np.all(S > 0) or not np.all(np.isfinite(S)):
+        raise ValueError(f"densities must be {n} finite numbers > 0 (one per state), but found {densities!r}")
+    q = float(q)
+    if not q > 0 or not math.isfinite(q):
+        raise ValueError(f"q must be a finite number > 0, but found {q!r}")
+    if plant.B1.shape[1] != 1:
+        raise ValueError(f"plant must have one disturbance input, but has {plant.B1.shape[1]}")
+    Fa = np.block([[plant.A, plant.B1], [np.zeros((1, n + 1))]])
+    H = np.hstack([np.eye(n), np.zeros((n, 1))])
+    G = np.r_[np.zeros(n), 1.0][:, None]
+    V = np.diag(S)
+    P = solve_continuous_are(Fa.T, H.T, q * (G @ G.T), V)
+    P = (P + P.T) / 2
+    L = P @ H.T / S[None, :]
+    Ae = Fa - L @ H
+    if np.max(np.linalg.eigvals(Ae).real) >= 0:
+        raise ValueError("kalman_bucy: the filter's error dynamics are not stable")
+    return Ae, L, G, P
+
+
+def observer_filters(Ae, L, G) -> tuple:
+    """``ŵ = F(s) d + N(s) v`` of the observer (module docstring): ``F = (Ae, G, −C_η Ae, 0)``,
+    ``N = (Ae, L, C_η, 0)``, C_η reading the estimate of d (the last augmented state).
+
+    Parameters
+    ----------
+    Ae, L, G : ndarray
+        :func:`kalman_bucy`'s.
+
+    Returns
+    -------
+    (LTISystem, LTISystem)
+        F (one input, d) and N (one input per state, v).
+    """
+    N = Ae.shape[0]
+    Ceta = np.zeros((1, N))
+    Ceta[0, -1] = 1.0
+    return (LTISystem(Ae, G, -Ceta @ Ae, np.zeros((1, 1))),
+            LTISystem(Ae, L, Ceta, np.zeros((1, L.shape[1]))))
+
+
+def with_observer(ctrl: Controller, plant, Ae, L) -> Controller:
+    """A controller reading x and ŵ, with ŵ from the observer: one controller reading ``x_m``
+    alone (its states: the observer's, then the controller's). A controller that does not read ŵ
+    is returned as it is.
+
+    Parameters
+    ----------
+    ctrl : Controller
+    plant : Plant
+    Ae, L : ndarray
+        :func:`kalman_bucy`'s.
+
+    Returns
+    -------
+    Controller
+    """
+    if not ctrl.reads_estimate:
+        return ctrl
+    N = Ae.shape[0]
+    Ceta = np.zeros((1, N))
+    Ceta[0, -1] = 1.0
+    Bu = np.vstack([plant.B2, np.zeros((1, plant.n_controls))])
+    A, B, C, D, E, F = ctrl.A, ctrl.B, ctrl.C, ctrl.D, ctrl.E, ctrl.F
+    k = ctrl.n_states
+    Ac = np.block([[Ae + Bu @ F @ Ceta, Bu @ C], [E @ Ceta, A]]) if k else Ae + Bu @ F @ Ceta
+    Bc = np.vstack([Bu @ D + L, B]) if k else Bu @ D + L
+    Cc = np.hstack([F @ Ceta, C]) if k else F @ Ceta
+    return Controller(Ac, Bc, Cc, D, name=f"{ctrl.name} with the observer")
+
+
+def filtered_base(ctrl: Controller, Ae, G) -> Controller:
+    """The controller ``u = K x + Q(s) F(s) ŵ``: ``ctrl`` (``u = K x + Q(s) ŵ``, its states driven
+    by ŵ alone) reading ŵ through the observer's F (:func:`observer_filters`). With ŵ = d it is,
+    on d, the loop of ``with_observer(ctrl)`` without noise.
+
+    Parameters
+    ----------
+    ctrl : Controller
+        Reads ŵ; ``B = 0``.
+    Ae, G : ndarray
+
+    Returns
+    -------
+    Controller
+    """
+    N, k = Ae.shape[0], ctrl.n_states
+    Ceta = np.zeros((1, N))
+    Ceta[0, -1] = 1.0
+    out = -Ceta @ Ae
+    A = np.block([[Ae, np.zeros((N, k))], [ctrl.E @ out, ctrl.A]]) if k else Ae
+    E = np.vstack([G, np.zeros((k, 1))])
+    C = np.hstack([ctrl.F @ out, ctrl.C])
+    return Controller(A, np.zeros((N + k, ctrl.D.shape[1])), C, ctrl.D, E, np.zeros_like(ctrl.F),
+                      name=f"{ctrl.name} reading F(s) ŵ")
+
+
+def sensor_loop(plant, ctrl: Controller) -> LTISystem:
+    """The closed loop from the sensor's noise v (one input per state, entering where the
+    controller reads x) to z, for a controller reading x alone (d = 0).
+
+    Parameters
+    ----------
+    plant : Plant
+    ctrl : Controller
+        Reads x alone (:func:`with_observer`'s, or one that never read ŵ).
+
+    Returns
+    -------
+    LTISystem
+    """
+    if ctrl.reads_estimate:
+        raise ValueError(f"ctrl {ctrl.name!r} reads ŵ: give it with its observer (with_observer)")
+    loop = plant.closed_loop(ctrl)
+    Bv = np.vstack([plant.B2 @ ctrl.D, ctrl.B])
+    return LTISystem(loop.A, Bv, loop.C, plant.D2 @ ctrl.D)
+
+
+def sensor_noise_power(plant, ctrl: Controller, densities, nyquist: float) -> float:
+    """The mean power the sensor's noise adds to z in the loop of ``ctrl`` (reading x alone):
+    the sum over the states of :func:`fdsc.measurement_noise.noise_power` (the noises are
+    independent).
+
+    Parameters
+    ----------
+    plant : Plant
+    ctrl : Controller
+    densities : (n,) array_like
+    nyquist : float
+
+    Returns
+    -------
+    float
+    """
+    loop = sensor_loop(plant, ctrl)
+    S = np.asarray(densities, dtype=float).reshape(-1)
+    return float(sum(noise_power(LTISystem(loop.A, loop.B[:, [i]], loop.C, loop.D[:, [i]]), S[i], nyquist)
+                     for i in range(S.size)))
+
+
+def sensor_densities(example: str, level: float, reference: Controller) -> np.ndarray:
+    """The sensor's noise densities at a level: each state's mean power on the class in the loop of
+    ``reference`` (exact estimate) over ``10^(level/10)``, spread flat over the band ``|ω| ≤ Ω``
+    of the law's sampler (variance ``S Ω / π``).
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+    level : float
+        dB.
+    reference : Controller
+
+    Returns
+    -------
+    (n,) ndarray
+    """
+    plant, cls = _example(example).plant, segment_class(example)
+    loop = plant.closed_loop(reference)
+    n = plant.n_states
+    _band, step = law_band(example)
+    nyq = math.pi / step
+    powers = [expected_power(LTISystem(loop.A, loop.B, np.eye(loop.A.shape[0])[[i]], np.zeros((1, 1))), cls)
+              for i in range(n)]
+    return np.array(powers) / 10.0 ** (level / 10.0) / (nyq / math.pi)
+
+
+def _expected(example, ctrl, densities):
+    """The expected power of a controller reading x alone with the sensor's noise: on the class,
+    plus the noise's."""
+    plant, cls = _example(example).plant, segment_class(example)
+    _band, step = law_band(example)
+    return (expected_power(plant.closed_loop(ctrl), cls)
+            + sensor_noise_power(plant, ctrl, densities, math.pi / step))
+
+
+def choose_intensity(example: str, reference: Controller, densities) -> tuple:
+    """The observer's intensity q of :data:`INTENSITIES` (times the class's power) of least
+    expected power for ``reference`` reading ŵ through it.
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+    reference : Controller
+        Reads x and ŵ.
+    densities : (n,) array_like
+
+    Returns
+    -------
+    (float, dict)
+        q, and ``{q: expected power}`` over the grid.
+    """
+    plant, cls = _example(example).plant, segment_class(example)
+    scores = {}
+    for r in INTENSITIES:
+        q = r * cls.power
+        Ae, L, _G, _P = kalman_bucy(plant, densities, q)
+        scores[q] = _expected(example, with_observer(reference, plant, Ae, L), densities)
+    return min(scores, key=scores.get), scores
+
+
+class ObservedLaw(ConfidentPredictiveLaw):
+    """:class:`fdsc.confident.ConfidentPredictiveLaw` reading ŵ from the observer (module
+    docstring): its base is :func:`filtered_base`'s, its identifications read samples of
+    ``F(s) d + N(s) v``, and it divides each identified tone by ``F(jω)``.
+
+    Parameters
+    ----------
+    plant, band : as the parent
+    observer : (Ae, L, G)
+        :func:`kalman_bucy`'s.
+    densities : (n,) array_like
+        The sensor's noise densities.
+    **kwargs
+        The parent's settings (``base`` is the controller reading ŵ before its observer).
+    """
+
+    def __init__(self, plant, band, *, observer, densities, base, **kwargs):
+        Ae, L, G = observer
+        super().__init__(plant, band, base=filtered_base(base, Ae, G), **kwargs)
+        self._F, self._N = observer_filters(Ae, L, G)
+        self._S = np.asarray(densities, dtype=float).reshape(-1)
+        lam, V = np.linalg.eig(Ae)
+        self._lam, self._V, self._Vi = lam, V, np.linalg.inv(V)
+        # the noise state's stationary covariance and its Gauss–Markov step over one sample
+        Qc = L @ np.diag(self._S) @ L.T
+        self._P0 = solve_continuous_lyapunov(Ae, -Qc)
+        Ad = expm(Ae * self.step)
+        Qd = self._P0 - Ad @ self._P0 @ Ad.T
+        self._Ad = Ad
+        self._chol0 = np.linalg.cholesky((self._P0 + self._P0.T) / 2 + 1e-300 * np.eye(Ae.shape[0]))
+        w, U = np.linalg.eigh((Qd + Qd.T) / 2)
+        self._sqQd = U * np.sqrt(np.clip(w, 0.0, None))
+        self._d, self._seed_obs = None, 0
+
+    def run(self, d, horizon, *, seed: int = 0, **kwargs):
+        """The law on d (parent's ``run``; its sample noise is the observer's, seeded by ``seed``)."""
+        self._d, self._seed_obs = d, int(seed)
+        self._states = self._piece_states(d, horizon)
+        return super().run(d, horizon, seed=seed, **kwargs)
+
+    def _piece_states(self, d, horizon):
+        """The state of F's realization at each piece's start (from rest, exact); d is zero
+        before its first break and after its last."""
+        Ae, G = self._F.A, self._F.B
+        zero = Sinusoids([0.0], [1.0])
+        if isinstance(d, Piecewise):
+            b = [float(x) for x in d.breaks]
+            parts = [(min(0.0, b[0]), zero)] + list(zip(b[:-1], d.parts, strict=True)) + [(b[-1], zero)]
+        else:
+            parts = [(0.0, d)]
+        out, f = [], np.zeros(Ae.shape[0])
+        for j, (t0, part) in enumerate(parts):
+            out.append((t0, part, f.copy()))
+            t1 = parts[j + 1][0] if j + 1 < len(parts) else None
+            if t1 is None or t1 <= t0:
+                continue
+            xp0 = particular(Ae, G, part, [t0])[0][0]
+            xp1 = particular(Ae, G, part, [t1])[0][0]
+            f = (self._V @ (np.exp(self._lam * (t1 - t0)) * (self._Vi @ (f - xp0)))).real + xp1
+        return out
+
+    def _filtered(self, tt):
+        """``F(s) d`` at the times tt (exact: each piece's transient plus its tones' response)."""
+        Ae, G, C = self._F.A, self._F.B, self._F.C
+        out = np.empty(tt.size)
+        starts = np.array([s[0] for s in self._states])
+        idx = np.clip(np.searchsorted(starts, tt, side="right") - 1, 0, len(starts) - 1)
+        for j in np.unique(idx):
+            sel = idx == j
+            t0, part, f0 = self._states[j]
+            xp = particular(Ae, G, part, tt[sel])[0]
+            xp0 = particular(Ae, G, part, [t0])[0][0]
+            decay = np.exp(np.outer(self._lam, tt[sel] - t0))
+            tr = (self._V @ (decay * (self._Vi @ (f0 - xp0))[:, None])).real
+            out[sel] = (C @ (xp.T + tr))[0]
+        return out
+
+    def _noise(self, m, key):
+        """m consecutive samples of ``N(s) v`` at the step, stationary, drawn from
+        ``default_rng([seed, key])`` (the Gauss–Markov recursion of N's state, mode by mode)."""
+        from scipy.signal import lfilter
+
+        rng = np.random.default_rng([self._seed_obs, key])
+        k = self._Ad.shape[0]
+        xi = rng.standard_normal((m, k))
+        drive = np.empty((m, k))
+        drive[0] = self._chol0 @ xi[0]
+        drive[1:] = xi[1:] @ self._sqQd.T
+        modal = self._Vi @ drive.T                       # (k, m), complex
+        mu = np.exp(self._lam * self.step)
+        y = np.vstack([lfilter([1.0], [1.0, -mu[i]], modal[i]) for i in range(k)])
+        return (self._N.C @ (self._V @ y)).real[0]
+
+    def _identify(self, sampled, t):
+        key = int(round(t / self.update))
+
+        def observed(tt):
+            tt = np.asarray(tt, dtype=float)
+            return (self._filtered(tt) + self._noise(tt.size, key)) * self._unit
+
+        model = super()._identify(observed, t)
+        if model is None:
+            return None
+        end, w, c, g = model
+        return (end, w, c / self.response(w), g)
+
+    def response(self, w):
+        """``F(jω)`` at the frequencies w (rad/s): what the observer makes of a tone of d."""
+        w = np.asarray(w, dtype=float).reshape(-1)
+        A, B, C = self._F.A, self._F.B, self._F.C
+        M = 1j * w[:, None, None] * np.eye(A.shape[0])[None] - A[None]
+        return (C @ np.linalg.solve(M, np.broadcast_to(B, (w.size, *B.shape))))[:, 0, 0]
+
+
+def level_design(example: str, level: float, full: dict) -> dict:
+    """The observer and the fixed controllers at one sensor noise level (module docstring).
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+    level : float
+        dB.
+    full : dict
+        The stored study.
+
+    Returns
+    -------
+    dict
+        ``densities``, ``nyquist``, ``q`` and ``q_scores`` (the observer), ``powers`` and
+        ``noise`` ({stored name: expected power with the sensor's noise, and its noise part}),
+        ``best`` (the controller reading ŵ, through the observer, of least expected power),
+        ``best_x`` (the one reading x alone), ``reference`` (the better of the two) and ``base``
+        (the stored study's best fixed controller (x, ŵ), the law's base).
+    """
+    plant = _example(example).plant
+    fs = stored_fixed_set(full, example)
+    base = fs.controllers[fs.chosen]
+    S = sensor_densities(example, level, base)
+    q, q_scores = choose_intensity(example, base, S)
+    Ae, L, _G, _P = kalman_bucy(plant, S, q)
+    _band, step = law_band(example)
+    nyq = math.pi / step
+    powers, noise = {}, {}
+    cls = segment_class(example)
+    for name in fs.names:
+        c = with_observer(fs.controllers[name], plant, Ae, L)
+        loop = plant.closed_loop(c)
+        if not loop.is_hurwitz():
+            continue                                  # unstable with the observer: not a candidate
+        noise[name] = sensor_noise_power(plant, c, S, nyq)
+        powers[name] = expected_power(loop, cls) + noise[name]
+    reading = [k for k in powers if fs.controllers[k].reads_estimate]
+    alone = [k for k in powers if not fs.controllers[k].reads_estimate]
+    best, best_x = min(reading, key=powers.get), min(alone, key=powers.get)
+    return {"densities": S.tolist(), "nyquist": nyq, "q": q,
+            "q_scores": {f"{k:g}": v for k, v in q_scores.items()},
+            "powers": powers, "noise": noise, "best": best, "best_x": best_x,
+            "reference": best if powers[best] <= powers[best_x] else best_x, "base": fs.chosen}
+
+
+def _observer(example, design):
+    plant = _example(example).plant
+    Ae, L, G, _P = kalman_bucy(plant, design["densities"], design["q"])
+    return plant, Ae, L, G
+
+
+def law_energy(example: str, index: int, seed: int, design: dict, window: float, base: Controller) -> tuple:
+    """The law with the observer on one draw: its energy with the expected energy of the sensor's
+    noise through its gain and base, and the share of its corrections applied.
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+    index, seed : int
+    design : dict
+        :func:`level_design`'s.
+    window : float
+    base : Controller
+        The stored best fixed controller (x, ŵ) (``design["base"]``).
+
+    Returns
+    -------
+    (float, float)
+    """
+    plant, Ae, L, G = _observer(example, design)
+    _ex, dr = seeded_draw(example, index, seed)
+    band, step = law_band(example)
+    law = ObservedLaw(plant, band, observer=(Ae, L, G), densities=design["densities"], base=base,
+                      window=window,
+                      step=step, update=UPDATE, max_tones=MAX_TONES, confidence=CONFIDENCE)
+    run = law.run(dr.d, dr.horizon, seed=index)
+    alphas = np.array([a for _t, a in law.confidences], dtype=float)
+    applied = float(np.mean(np.nan_to_num(alphas, nan=-1.0) >= CONFIDENCE)) if alphas.size else 0.0
+    return float(run.energy + dr.horizon * design["noise"][design["base"]]), applied
+
+
+def fixed_energy(example: str, index: int, seed: int, design: dict, ctrl: Controller, name: str) -> float:
+    """A fixed controller's energy on one draw with the observer and the sensor's noise: exact on d,
+    plus the noise's expected energy.
+
+    Parameters
+    ----------
+    example : {"aircraft", "generic"}
+    index, seed : int
+    design : dict
+    ctrl : Controller
+        The stored controller (before its observer).
+    name : str
+        Its stored name (for its noise power in ``design``).
+
+    Returns
+    -------
+    float
+    """
+    plant, Ae, L, _G = _observer(example, design)
+    _ex, dr = seeded_draw(example, index, seed)
+    c = with_observer(ctrl, plant, Ae, L)
+    clean = float(closed_form_energies(plant.closed_loop(c), [dr.d], [dr.horizon])[0][0])
+    return clean + dr.horizon * design["noise"][name]
+
+
+def observer_study(full: dict, *, n_test: int = N_TEST, n_train: int = N_TRAIN, executor=None) -> dict:
+    """The study (module docstring) on the stored study ``full``.
+
+    Parameters
+    ----------
+    full : dict
+        The stored study (:func:`fdsc.paper.pays.stored_study.load_full`).
+    n_test, n_train : int, optional
+        Test draws (the stored study's first) and training draws (its first draws).
+    executor : optional
+
+    Returns
+    -------
+    dict
+    """
+    from fdsc.paper.shared.cache import study_fingerprint
+    from fdsc.paper.shared.environment import build_commit
+
+    if n_test < 2 or n_train < 1:
+        raise ValueError(f"n_test ≥ 2 and n_train ≥ 1 are required, but found {n_test!r} and {n_train!r}")
+    seed = full["seed"]
+    out = {"commit": build_commit(), "fingerprint": study_fingerprint("fdsc.paper.pays.observer_rung"),
+           "stored_study": {"commit": full["commit"], "fingerprint": full["fingerprint"]},
+           "seed": seed, "levels": [f"{v:g} dB" for v in LEVELS], "n_test": n_test, "n_train": n_train,
+           "windows": list(WINDOWS), "fallback": FALLBACK, "confidence": CONFIDENCE, "update": UPDATE,
+           "intensities": list(INTENSITIES)}
+    keys = [(ex, lv) for ex in EXAMPLES for lv in LEVELS]
+    designs = dict(zip(keys, map_draws(level_design, [(ex, lv, full) for ex, lv in keys], executor),
+                       strict=True))
+    fsets = {ex: stored_fixed_set(full, ex) for ex in EXAMPLES}
+    bases = {ex: fsets[ex].controllers[fsets[ex].chosen] for ex in EXAMPLES}
+    # training: every window, and not predicting (the reference at the level), on the first draws
+    targs = [(ex, i, seed, designs[ex, lv], w, bases[ex])
+             for ex, lv in keys for w in WINDOWS for i in range(n_train)]
+    score = {}
+    for a, (e, _ap) in zip(targs, map_draws(law_energy, targs, executor), strict=True):
+        key = next(k for k in keys if designs[k] is a[3])
+        score.setdefault((*key, a[4]), []).append(math.log(e))
+    fargs = [(ex, i, seed, designs[ex, lv], fsets[ex].controllers[designs[ex, lv]["reference"]],
+              designs[ex, lv]["reference"]) for ex, lv in keys for i in range(n_train)]
+    for (ex, lv, _i), e in zip([(ex, lv, i) for ex, lv in keys for i in range(n_train)],
+                               map_draws(fixed_energy, fargs, executor), strict=True):
+        score.setdefault((ex, lv, FALLBACK), []).append(math.log(e))
+    settings = (*WINDOWS, FALLBACK)
+    chosen = {k: min(settings, key=lambda w, k=k: float(np.mean(score[(*k, w)]))) for k in keys}
+    idx = {ex: full[ex]["test_indices"][:n_test] for ex in EXAMPLES}
+    largs = [(ex, i, seed, designs[ex, lv], chosen[ex, lv], bases[ex]) for ex, lv in keys
+             if chosen[ex, lv] != FALLBACK for i in idx[ex]]
+    laws = {}
+    for a, r in zip(largs, map_draws(law_energy, largs, executor), strict=True):
+        key = next(k for k in keys if designs[k] is a[3])
+        laws[(*key, a[1])] = r
+    rungs = ("best", "best_x")
+    xargs = [(ex, i, seed, designs[ex, lv], fsets[ex].controllers[designs[ex, lv][r]], designs[ex, lv][r])
+             for ex, lv in keys for r in rungs for i in idx[ex]]
+    xkeys = [(ex, lv, r, i) for ex, lv in keys for r in rungs for i in idx[ex]]
+    fixed = dict(zip(xkeys, map_draws(fixed_energy, xargs, executor), strict=True))
+    for ex in EXAMPLES:
+        st = full[ex]
+        pos = {i: k for k, i in enumerate(st["test_indices"])}
+        res = {"test_indices": idx[ex], "horizons": [seeded_draw(ex, i, seed)[1].horizon for i in idx[ex]]}
+        for lv in LEVELS:
+            dz, key = designs[ex, lv], (ex, lv)
+            ref = "best" if dz["reference"] == dz["best"] else "best_x"
+            fb = chosen[key] == FALLBACK
+            res[f"{lv:g} dB"] = {
+                **{k: dz[k] for k in ("densities", "nyquist", "q", "q_scores", "best", "best_x", "reference",
+                                      "base")},
+                "expected_power": {dz[r]: dz["powers"][dz[r]] for r in rungs}
+                | {"base": dz["powers"][dz["base"]]},
+                "noise_power": {dz[r]: dz["noise"][dz[r]] for r in rungs},
+                "window": chosen[key],
+                "train_scores": {(f"{w:g}" if w != FALLBACK else w): float(np.mean(score[(*key, w)]))
+                                 for w in settings},
+                "applied": [0.0 if fb else laws[(*key, i)][1] for i in idx[ex]],
+                "energies": {"limit": [st["ladder"]["energies"]["limit"][pos[i]] for i in idx[ex]],
+                             "predictive (observer)": [fixed[ex, lv, ref, i] if fb else laws[(*key, i)][0]
+                                                       for i in idx[ex]],
+                             "best fixed (x, ŵ)": [fixed[ex, lv, "best", i] for i in idx[ex]],
+                             "best fixed (x)": [fixed[ex, lv, "best_x", i] for i in idx[ex]]}}
+        out[ex] = res
+    return out
+
+
+def summary(res: dict, example: str) -> list:
+    """Per level: each rung over the best fixed controller at that level (the better of the best
+    reading ŵ through the observer and the best reading x alone): median with its bootstrap 95 %
+    interval, the share of draws with less energy, and the law's median share of the log
+    headroom to the limit.
+
+    Parameters
+    ----------
+    res : dict
+        :func:`observer_study`'s result, or the stored one.
+    example : {"aircraft", "generic"}
+
+    Returns
+    -------
+    list of dict
+        ``{"level", "reference", "window", rung: (median, lo, hi, wins), "share": (median, lo, hi)}``.
+    """
+    if example not in EXAMPLES:
+        raise ValueError(f"example must be one of {EXAMPLES}, but found {example!r}")
+    rows = []
+    for key in res["levels"]:
+        row = res[example][key]
+        ref = "best fixed (x, ŵ)" if row["reference"] == row["best"] else "best fixed (x)"
+        e = {k: np.asarray(v, dtype=float) for k, v in row["energies"].items()}
+        out = {"level": key, "reference": ref, "window": row["window"]}
+        for rung, v in e.items():
+            q = v / e[ref]
+            out[rung] = (*bootstrap_median(q), float(np.mean(q < 1.0)))
+        gap = np.log(e["limit"] / e[ref])
+        out["share"] = bootstrap_median(np.log(e["predictive (observer)"] / e[ref]) / gap)
+        rows.append(out)
+    return rows
+
+
+def load_observer(path=None):
+    """The stored study of this module (None if absent).
+
+    Parameters
+    ----------
+    path : path, optional
+        Default :data:`OBSERVER_FILE` in the repository this package lies in.
+
+    Returns
+    -------
+    dict or None
+    """
+    path = Path(__file__).resolve().parents[3] / OBSERVER_FILE if path is None else Path(path)
+    if not path.is_file():
+        return None
+    return json.loads(path.read_text(encoding="utf-8"))
+
+
+def main(argv=None) -> int:
+    """``python -m fdsc observer-rung [--workers W] [--n-test N] [--n-train N] [--out FILE | --replace]``.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+
+    Returns
+    -------
+    int
+        0 on success.
+    """
+    import argparse
+    import multiprocessing
+    import resource
+    from concurrent.futures import ProcessPoolExecutor
+
+    ap = argparse.ArgumentParser(prog="python -m fdsc observer-rung",
+                                 description="the ladder with ŵ from a disturbance observer on noisy "
+                                             "measurements of x, on the stored study's draws")
+    ap.add_argument("--workers", type=int, default=min(os.cpu_count() or 1, 4))
+    ap.add_argument("--n-test", type=int, default=N_TEST)
+    ap.add_argument("--n-train", type=int, default=N_TRAIN)
+    ap.add_argument("--out", default="out/observer_rung.json")
+    ap.add_argument("--replace", action="store_true", help=f"write {OBSERVER_FILE}, which the book reads")
+    args = ap.parse_args(argv)
+    if args.workers < 1 or args.n_test < 2 or args.n_train < 1:
+        ap.error("--workers ≥ 1, --n-test ≥ 2 and --n-train ≥ 1 are required")
+    full = load_full()
+    if full is None:
+        ap.error(f"the stored study {Path('book') / 'data' / 'disturbance_law_full.json'} is missing")
+    out = Path(__file__).resolve().parents[3] / OBSERVER_FILE if args.replace else Path(args.out)
+    for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ.setdefault(var, "1")
+    t0, load0 = time.perf_counter(), os.getloadavg()[0]
+    with ProcessPoolExecutor(args.workers, mp_context=multiprocessing.get_context("spawn")) as ex:
+        res = observer_study(full, n_test=args.n_test, n_train=args.n_train, executor=ex)
+    res["seconds"] = round(time.perf_counter() - t0, 1)
+    cpu = sum(u.ru_utime + u.ru_stime for u in (resource.getrusage(resource.RUSAGE_SELF),
+                                                  resource.getrusage(resource.RUSAGE_CHILDREN)))
+    res["host"] = {"cpus": os.cpu_count(), "workers": args.workers, "cpu_seconds": round(cpu, 1),
+                   "load_before": round(load0, 2), "load_after": round(os.getloadavg()[0], 2)}
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text(json.dumps(res, indent=1) + "\n", encoding="utf-8")
+    print(f"observer rung: {res['seconds']:.0f} s on {args.workers} workers; written to {out}",
+          file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
