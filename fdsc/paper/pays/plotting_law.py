@@ -157,7 +157,8 @@ def plot_fixed_plane(points, chosen, ax=None, *, top=None, zoom=None, zoom_at=(0
     unknown = sorted({f for f, _lf, _hf in points.values()} - set(FAMILY_STYLES))
     if unknown:
         # a family without a style would be left out of a figure that says it shows every controller
-        raise KeyError(f"points: the families {unknown} have no style (FAMILY_STYLES has {list(FAMILY_STYLES)})")
+        raise KeyError(f"points: the families {unknown} have no style "
+                       f"(FAMILY_STYLES has {list(FAMILY_STYLES)})")
     off, seen = [], set()
     for fam in FAMILY_STYLES:
         members = [(n, lf, hf) for n, (f, lf, hf) in points.items() if f == fam]

@@ -263,7 +263,8 @@ def sweep_claims(study: SweepStudy, *, half: bool = False) -> list:
     rows.append(ClaimRow(
         "the proposed FDSC technique displays excellent [performance] in rejecting disturbances",
         src8, "the points of the ρ_t grid at which FDSC has the smallest energy of the four "
-        "controllers, of all its points; PASS if all, PARTLY if some", f"{int(fdsc_best.sum())} of {fdsc_best.size}",
+        "controllers, of all its points; PASS if all, PARTLY if some",
+        f"{int(fdsc_best.sum())} of {fdsc_best.size}",
         _grade(bool(fdsc_best.all()), bool(fdsc_best.any())),
         f"of the paper's four controllers FDSC has the least energy at {int(fdsc_best.sum())} of "
         f"{fdsc_best.size} values of ρ_t; its energy is at most "
