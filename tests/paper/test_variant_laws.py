@@ -90,8 +90,12 @@ def test_the_summary_reads_the_stored_energies(res):
 def test_the_fixed_controller_and_the_law_recompute_on_a_stored_draw(res):
     # the generic example's shorter segments: the cheapest runs of the study
     out = vl.recheck(res, "generic", "shorter", 0)
-    assert out["fixed"][1] == pytest.approx(out["fixed"][0], rel=1e-6)
-    assert out["law"][1] == pytest.approx(out["law"][0], rel=1e-6)
+    # the base is designed again here (the study stores its draws' energies, not its matrices): the
+    # design's least squares rounds differently with other BLAS threading (1.2e-5 relative seen
+    # between the study's one-thread workers and a test process), so what it achieves is checked to
+    # 1e-4, not to the rounding; the law on that base follows it
+    assert out["fixed"][1] == pytest.approx(out["fixed"][0], rel=1e-4)
+    assert out["law"][1] == pytest.approx(out["law"][0], rel=1e-4)
 
 
 def test_a_variant_where_the_law_does_not_predict_rechecks_its_base():
