@@ -66,9 +66,8 @@ __all__ = ["LEVELS", "INTENSITIES", "OBSERVER_FILE", "kalman_bucy", "observer_fi
            "ObservedLaw", "level_design", "law_energy", "fixed_energy", "observer_study", "summary",
            "load_observer", "main"]
 
-#: Sensor signal-to-noise ratios per state (dB): one level, the one the noise study's targets name (a
-#: run of the aircraft's law through the observer costs about five times one on the exact estimate).
-LEVELS = (20.0,)
+#: Sensor signal-to-noise ratios per state (dB).
+LEVELS = (40.0, 20.0, 0.0)
 #: The observer's random-walk intensities tried, times the class's power (1/s).
 INTENSITIES = tuple(10.0 ** k for k in range(-2, 9))
 #: The stored result, which the book reads.
