@@ -8,7 +8,7 @@ predictive law with a confidence check fares on the class's variants
 import numpy as np
 
 from fdsc.paper.pays.information import FALLBACK, summary
-from fdsc.paper.shared.prose import pct, times_ci
+from fdsc.paper.shared.prose import num, pct, times_ci
 from fdsc.paper.shared.stats import bootstrap_median
 
 __all__ = ["noise_pays_words", "adaptive_vs_predictive", "adaptive_words", "variant_verdicts",
@@ -83,16 +83,35 @@ def noise_pays_words(info, rows=None, rung="predictive (confident)"):
     return " and ".join(parts)
 
 
-def adaptive_vs_predictive(adapt, example):
-    """The adaptive feedforward over the predictive law, draw by draw, on the adaptive study's
-    test draws: the median of the per-draw ratio with its bootstrap 95 % interval, and the share
-    of draws on which the adaptive law has less energy.
+def _ci(c):
+    """:func:`times_ci`, with four significant digits where three print the median and both ends
+    alike (a ratio within a few per mil of 1).
+
+    Examples
+    --------
+    >>> _ci({"median": 1.0036, "low": 1.0021, "high": 1.0046})
+    '×1.004 [1.002, 1.005]'
+    """
+    w = times_ci(c)
+    printed = {times_ci({"median": c[k], "low": c[k], "high": c[k]}) for k in ("median", "low", "high")}
+    if len(printed) > 1 or c["high"] - c["low"] <= 1e-9 * abs(c["high"]):
+        return w
+    return f"×{num(c['median'], 4)} [{num(c['low'], 4)}, {num(c['high'], 4)}]"
+
+
+def adaptive_vs_predictive(adapt, example, against=None):
+    """The adaptive feedforward over a predictive law, draw by draw, on the adaptive study's test
+    draws: the median of the per-draw ratio with its bootstrap 95 % interval, and the share of
+    draws on which the adaptive law has less energy.
 
     Parameters
     ----------
     adapt : dict
         The stored adaptive study (:func:`fdsc.paper.pays.adaptive_rung.load_adaptive`).
     example : {"aircraft", "generic"}
+    against : sequence of float, optional
+        The other law's energies on the same draws (default the stored study's predictive law,
+        ``adapt[example]["predictive_energies"]``).
 
     Returns
     -------
@@ -100,15 +119,20 @@ def adaptive_vs_predictive(adapt, example):
         ``{"median", "low", "high", "win_rate", "draws"}``.
     """
     r = adapt[example]
-    x = np.asarray(r["energies"], float) / np.asarray(r["predictive_energies"], float)
+    other = np.asarray(r["predictive_energies"] if against is None else against, float).reshape(-1)
+    if other.size != len(r["energies"]):
+        raise ValueError(f"against must hold one energy per test draw ({len(r['energies'])}), "
+                         f"but has {other.size}")
+    x = np.asarray(r["energies"], float) / other
     med, lo, hi = bootstrap_median(x)
     return {"median": med, "low": lo, "high": hi, "win_rate": float(np.mean(x < 1.0)), "draws": int(x.size)}
 
 
-def adaptive_words(adapt, numbers=True):
+def adaptive_words(adapt, numbers=True, confident=None):
     """Which of the adaptive feedforward and the predictive law does better on each example, by
     the paired comparison of :func:`adaptive_vs_predictive` (better only where the whole 95 %
-    interval of the per-draw ratio lies on one side of 1), in words.
+    interval of the per-draw ratio lies on one side of 1), in words; with ``confident``, also
+    against the predictive law with a confidence check on the same draws.
 
     Parameters
     ----------
@@ -116,6 +140,9 @@ def adaptive_words(adapt, numbers=True):
         The stored adaptive study.
     numbers : bool, optional
         False: the verdicts alone (the landing page's short form).
+    confident : dict, optional
+        ``{example: energies}`` of the law with a confidence check on the adaptive study's test
+        draws (the noise study's exact estimate).
 
     Returns
     -------
@@ -132,18 +159,34 @@ def adaptive_words(adapt, numbers=True):
     aircraft (less energy on 100 % of the draws: the adaptive law does better)'
     >>> adaptive_words(a, numbers=False)
     'draw by draw, the adaptive law does better on the aircraft and on the generic example'
+    >>> conf = {e: [0.9, 1.9, 2.9, 3.9] for e in WHERE}
+    >>> adaptive_words(a, numbers=False, confident=conf)  # doctest: +NORMALIZE_WHITESPACE
+    'draw by draw, the adaptive law does better on the aircraft and on the generic example; against
+    the law with a confidence check, the law with a confidence check does better on the aircraft and
+    on the generic example'
     """
-    parts, verdicts = [], {}
-    for e, name in WHERE.items():
-        c = adaptive_vs_predictive(adapt, e)
-        verdict = ("the adaptive law does better" if c["high"] < 1.0 else
-                   "the predictive law does better" if c["low"] > 1.0 else "neither does better")
-        parts.append(f"{times_ci(c)} on the {name} (less energy on {pct(c['win_rate'])} of the draws: "
-                     f"{verdict})")
-        verdicts.setdefault(verdict, []).append(f"on the {name}")
+    def compare(against, other):
+        parts, verdicts = [], {}
+        for e, name in WHERE.items():
+            c = adaptive_vs_predictive(adapt, e, None if against is None else against[e])
+            verdict = ("the adaptive law does better" if c["high"] < 1.0 else
+                       f"{other} does better" if c["low"] > 1.0 else "neither does better")
+            parts.append(f"{_ci(c)} on the {name} (less energy on {pct(c['win_rate'])} of the draws: "
+                         f"{verdict})")
+            verdicts.setdefault(verdict, []).append(f"on the {name}")
+        return parts, verdicts
+
+    parts, verdicts = compare(None, "the predictive law")
     if not numbers:
-        return "draw by draw, " + "; ".join(f"{v} {' and '.join(w)}" for v, w in verdicts.items())
-    return "draw by draw, the adaptive law over the predictive law has " + " and ".join(parts)
+        out = "draw by draw, " + "; ".join(f"{v} {' and '.join(w)}" for v, w in verdicts.items())
+    else:
+        out = "draw by draw, the adaptive law over the predictive law has " + " and ".join(parts)
+    if confident is not None:
+        cparts, cverdicts = compare(confident, "the law with a confidence check")
+        out += ("; against the law with a confidence check, " + "; ".join(
+            f"{v} {' and '.join(w)}" for v, w in cverdicts.items()) if not numbers else
+            "; over the law with a confidence check it has " + " and ".join(cparts))
+    return out
 
 
 def variant_verdicts(rows):
