@@ -162,8 +162,7 @@ def adaptive_words(adapt, numbers=True, confident=None):
     >>> conf = {e: [0.9, 1.9, 2.9, 3.9] for e in WHERE}
     >>> adaptive_words(a, numbers=False, confident=conf)  # doctest: +NORMALIZE_WHITESPACE
     'draw by draw, the adaptive law does better on the aircraft and on the generic example; against
-    the law with a confidence check, the law with a confidence check does better on the aircraft and
-    on the generic example'
+    the law with a confidence check, that law does better on both examples'
     """
     def compare(against, other):
         parts, verdicts = [], {}
@@ -182,9 +181,12 @@ def adaptive_words(adapt, numbers=True, confident=None):
     else:
         out = "draw by draw, the adaptive law over the predictive law has " + " and ".join(parts)
     if confident is not None:
-        cparts, cverdicts = compare(confident, "the law with a confidence check")
-        out += ("; against the law with a confidence check, " + "; ".join(
-            f"{v} {' and '.join(w)}" for v, w in cverdicts.items()) if not numbers else
+        cparts, cverdicts = compare(confident, "that law")
+        def where(w):
+            return "on both examples" if len(w) == len(WHERE) else " and ".join(w)
+
+        out += ("; against the law with a confidence check, "
+                + "; ".join(f"{v} {where(w)}" for v, w in cverdicts.items()) if not numbers else
             "; over the law with a confidence check it has " + " and ".join(cparts))
     return out
 
