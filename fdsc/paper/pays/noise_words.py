@@ -12,7 +12,7 @@ from fdsc.paper.shared.prose import num, pct, times_ci
 from fdsc.paper.shared.stats import bootstrap_median
 
 __all__ = ["noise_pays_words", "adaptive_vs_predictive", "adaptive_words", "variant_verdicts",
-           "variant_words", "VARIANT_CLAUSE"]
+           "variant_words", "variant_short", "VARIANT_CLAUSE"]
 
 #: The examples in the words of the pages.
 WHERE = {"aircraft": "aircraft", "generic": "generic example"}
@@ -128,7 +128,7 @@ def adaptive_vs_predictive(adapt, example, against=None):
     return {"median": med, "low": lo, "high": hi, "win_rate": float(np.mean(x < 1.0)), "draws": int(x.size)}
 
 
-def adaptive_words(adapt, numbers=True, confident=None):
+def adaptive_words(adapt, numbers=True, confident=None, only_confident=False):
     """Which of the adaptive feedforward and the predictive law does better on each example, by
     the paired comparison of :func:`adaptive_vs_predictive` (better only where the whole 95 %
     interval of the per-draw ratio lies on one side of 1), in words; with ``confident``, also
@@ -143,6 +143,9 @@ def adaptive_words(adapt, numbers=True, confident=None):
     confident : dict, optional
         ``{example: energies}`` of the law with a confidence check on the adaptive study's test
         draws (the noise study's exact estimate).
+    only_confident : bool, optional
+        With ``confident`` and ``numbers=False``: only the comparison with the law with a
+        confidence check (the landing page's shortest form).
 
     Returns
     -------
@@ -163,6 +166,8 @@ def adaptive_words(adapt, numbers=True, confident=None):
     >>> adaptive_words(a, numbers=False, confident=conf)  # doctest: +NORMALIZE_WHITESPACE
     'draw by draw, the adaptive law does better on the aircraft and on the generic example; against
     the law with a confidence check, that law does better on both examples'
+    >>> adaptive_words(a, numbers=False, confident=conf, only_confident=True)
+    'draw by draw, the law with a confidence check does better on both examples'
     """
     def compare(against, other):
         parts, verdicts = [], {}
@@ -175,6 +180,12 @@ def adaptive_words(adapt, numbers=True, confident=None):
             verdicts.setdefault(verdict, []).append(f"on the {name}")
         return parts, verdicts
 
+    if only_confident and confident is not None and not numbers:
+        _p, cverdicts = compare(confident, "the law with a confidence check")
+        mine = "it does better than the law with a confidence check"
+        return "draw by draw, " + "; ".join(
+            v.replace("the adaptive law does better", mine) + " "
+            + ("on both examples" if len(w) == len(WHERE) else " and ".join(w)) for v, w in cverdicts.items())
     parts, verdicts = compare(None, "the predictive law")
     if not numbers:
         out = "draw by draw, " + "; ".join(f"{v} {' and '.join(w)}" for v, w in verdicts.items())
@@ -297,3 +308,37 @@ def variant_words(rows, numbers=True):
                 bits.append(f"{label} {on(es)}{'' if kind == 'fixed' else nums(v, es)}{after}")
         parts.append(f"where {VARIANT_CLAUSE.get(v, v)}, " + " and ".join(bits))
     return head + ": " + "; ".join(parts)
+
+
+def variant_short(rows):
+    """:func:`variant_words` in one clause, for the landing page: whether the law with a confidence
+    check loses on any variant, and on how many of the variant-and-example pairs it gains.
+
+    Parameters
+    ----------
+    rows : dict
+        ``{example: summary}``, each :func:`fdsc.paper.pays.variant_laws.summary`.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> def law(m, lo, hi, w=4.0):
+    ...     return {"predictive (confident)": {"median": m, "low": lo, "high": hi}, "window": w}
+    >>> rows = {"aircraft": {"shorter": law(0.9, 0.8, 0.95), "noise": law(0.9998, 0.9994, 1.0001)},
+    ...         "generic": {"shorter": law(0.8, 0.7, 0.9), "noise": law(1.0, 1.0, 1.0, "fixed")}}
+    >>> variant_short(rows)  # doctest: +NORMALIZE_WHITESPACE
+    'it loses on none and gains on 2 of the 4 variant-and-example pairs (not where every segment
+    is band-limited noise)'
+    """
+    verdict = variant_verdicts(rows)
+    bad = [k for k, v in verdict.items() if v in ("loss", "unclear")]
+    gains = [k for k, v in verdict.items() if v == "gain"]
+    rest = list(dict.fromkeys(v for (e, v), k in verdict.items() if k != "gain"))
+    out = ("it loses on none" if not bad else f"it does not keep its median at or below 1 on {len(bad)}")
+    out += f" and gains on {len(gains)} of the {len(verdict)} variant-and-example pairs"
+    if rest:
+        out += " (not where " + _listed([VARIANT_CLAUSE.get(v, v) for v in rest], "or") + ")"
+    return out
