@@ -591,7 +591,10 @@ def test_closed_form_lti_sums_equal_the_loop_on_random_loops():
         assert auto.energy == closed.energy
         assert_allclose(closed.energy, loop.energy, rtol=3e-10)
         assert_allclose(closed.input_energy, loop.input_energy, rtol=2e-11)
-        assert_allclose(closed.x_final, loop.x_final, rtol=0, atol=1e-10 * np.abs(loop.x_final).max())
+        # the final state of two exact methods agrees to rounding; on some CPUs (an AMD EPYC family 25
+        # host: 1.1e-10 of the largest entry on one of these loops) the two round apart by a little
+        # more than 1e-10, so 1e-9 of the largest entry: still a millionth of the energy's tolerance
+        assert_allclose(closed.x_final, loop.x_final, rtol=0, atol=1e-9 * np.abs(loop.x_final).max())
         assert_allclose(closed.energy_cum, loop.energy_cum, rtol=3e-10, atol=0)
         assert_allclose(closed.input_energy_cum, loop.input_energy_cum, rtol=2e-11, atol=0)
         assert closed.t_cum.size == loop.t_cum.size and closed.switches == 0
