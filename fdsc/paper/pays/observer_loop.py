@@ -234,7 +234,25 @@ class ObservedLaw(ConfidentPredictiveLaw):
         self._d, self._seed_obs = None, 0
 
     def run(self, d, horizon, *, seed: int = 0, **kwargs):
-        """The law on d (parent's ``run``; its sample noise is the observer's, seeded by ``seed``)."""
+        """The law on d (the parent's ``run``), its samples read through the observer.
+
+        Parameters
+        ----------
+        d : Sinusoids or Piecewise
+            The disturbance.
+        horizon : float
+            H > 0 (s).
+        seed : int, optional
+            The noise of the identification at update k is drawn from
+            ``numpy.random.default_rng([seed, k])``.
+        **kwargs
+            The parent's other arguments (``x0``; ``estimate`` and ``noise`` are not used: the
+            observer's output is what the law reads).
+
+        Returns
+        -------
+        PredictiveRun
+        """
         self._d, self._seed_obs = d, int(seed)
         self._states = self._piece_states(d, horizon)
         return super().run(d, horizon, seed=seed, **kwargs)
@@ -302,7 +320,18 @@ class ObservedLaw(ConfidentPredictiveLaw):
         return (end, w, c / self.response(w), g)
 
     def response(self, w):
-        """``F(jω)`` at the frequencies w (rad/s): what the observer makes of a tone of d."""
+        """``F(jω)`` at the frequencies w: what the observer makes of a tone of d.
+
+        Parameters
+        ----------
+        w : array_like
+            Frequencies (rad/s).
+
+        Returns
+        -------
+        ndarray
+            Complex, one per frequency.
+        """
         w = np.asarray(w, dtype=float).reshape(-1)
         A, B, C = self._F.A, self._F.B, self._F.C
         M = 1j * w[:, None, None] * np.eye(A.shape[0])[None] - A[None]
