@@ -128,8 +128,8 @@ class Modal:
         h = self.Vi @ np.asarray(x0, dtype=float) - (coef * at0[:, None]).sum(axis=0)
         g_in = coef @ self.CV.T + np.asarray(d, dtype=complex)             # (K, p)
         g_md = (self.CV * h[None, :]).T                                    # (n, p)
-        e = np.r_[s, lam]
-        anchors = np.r_[a, np.zeros(lam.size, dtype=bool)]
+        e = np.concatenate([s, lam])
+        anchors = np.concatenate([a, np.zeros(lam.size, dtype=bool)])
         g = np.vstack([g_in, g_md])
         ends = np.ones(s.size, dtype=complex)                              # e^{s (L − a L)}
         ends[~a] = np.exp(s[~a] * L)
@@ -160,21 +160,25 @@ def _merged(e, anchors, g):
     """The terms with equal exponent and anchor summed into the first of them (order kept)."""
     if e.size < 2:
         return e, anchors, g
-    key = np.stack([e.real, e.imag, anchors.astype(float)], axis=1)
-    _u, first, inv = np.unique(key, axis=0, return_index=True, return_inverse=True)
-    if first.size == e.size:
+    first = {}
+    for t, key in enumerate(zip(e.real.tolist(), e.imag.tolist(), anchors.tolist())):
+        first.setdefault(key, t)
+    if len(first) == e.size:
         return e, anchors, g
-    order = np.argsort(first)                    # the unique terms in the order they first occur
-    rank = np.empty_like(order)
-    rank[order] = np.arange(order.size)
-    merged = np.zeros((first.size, g.shape[1]), dtype=np.result_type(g, complex))
-    np.add.at(merged, rank[np.ravel(inv)], g)
-    keep = first[order]
+    keep = np.fromiter(first.values(), dtype=np.int64, count=len(first))
+    slot = {key: r for r, key in enumerate(first)}
+    rank = np.fromiter((slot[key] for key in zip(e.real.tolist(), e.imag.tolist(), anchors.tolist())),
+                       dtype=np.int64, count=e.size)
+    merged = np.zeros((keep.size, g.shape[1]), dtype=np.result_type(g, complex))
+    np.add.at(merged, rank, g)
     return e[keep], anchors[keep], merged
 
 
 def _hermitian_integrals(e, anchors, L):
-    """``pair_integrals(conj(e), anchors, e, anchors, L)``, formed on and above the diagonal."""
+    """``pair_integrals(conj(e), anchors, e, anchors, L)``, formed on and above the diagonal
+    (every entry at once where no term is anchored at the piece's end)."""
+    if not anchors.any():
+        return L * phi1((e.conj()[:, None] + e[None, :]) * L)
     k = e.size
     i, j = np.triu_indices(k)
     vals = pair_integrals(e.conj()[i], anchors[i], e[j], anchors[j], L, pairs=True)
@@ -189,4 +193,4 @@ def tone_terms(t0, w, amp, ph):
     τ = t − t0: ``Σ_j c_j e^{jω_j τ} + conj``, returned as (2J,) exponents and (2J,) amplitudes."""
     w, amp, ph = (np.asarray(v, dtype=float) for v in (w, amp, ph))
     c = amp * np.exp(1j * (w * t0 + ph)) / 2j
-    return np.r_[1j * w, -1j * w], np.r_[c, c.conj()]
+    return np.concatenate([1j * w, -1j * w]), np.concatenate([c, c.conj()])

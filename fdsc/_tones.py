@@ -9,6 +9,7 @@ squares with a polynomial trend. :func:`_esprit` is the law's (the rank set by `
 
 from __future__ import annotations
 
+import functools
 import math
 import warnings
 
@@ -17,6 +18,37 @@ import numpy as np
 from .exceptions import ResolutionWarning
 
 __all__ = []
+
+
+def _hankel_gram(y, L):
+    """``H.T @ H`` of the lag matrix ``H[r, i] = y[r + i]`` (``N − L + 1`` rows, L columns) in
+    O(N L + L²) operations instead of O(N L²): its first row by one product, the rest along each
+    diagonal by the recurrence ``G[i+1, j+1] = G[i, j] + y[R+i] y[R+j] − y[i] y[j]`` (R rows)."""
+    y = np.asarray(y, dtype=float)
+    R = y.size - L + 1
+    first = np.lib.stride_tricks.sliding_window_view(y, R)[:L] @ y[:R]      # G[0, k], k < L
+    if L == 1:
+        return first.reshape(1, 1)
+    pad = np.concatenate([y, np.zeros(L)])
+    hi = np.lib.stride_tricks.sliding_window_view(pad[R:], L)[:L - 1]       # y[R+m+k]
+    lo = np.lib.stride_tricks.sliding_window_view(y, L)[:L - 1]             # y[m+k]
+    steps = y[R:R + L - 1, None] * hi - y[:L - 1, None] * lo                 # (L−1, L): m, k
+    diag = np.empty((L, L))                                                   # diag[i, k] = G[i, i+k]
+    diag[0] = first
+    np.cumsum(steps, axis=0, out=diag[1:])
+    diag[1:] += first[None, :]
+    i, k = _upper(L)
+    G = np.empty((L, L))
+    G[i, i + k] = diag[i, k]
+    G[i + k, i] = diag[i, k]
+    return G
+
+
+@functools.cache
+def _upper(L):
+    """Row and diagonal offset of every entry on and above the diagonal of an L × L matrix."""
+    i, j = np.triu_indices(L)
+    return i, j - i
 
 
 def _lag_matrix(y, lags):
@@ -44,11 +76,11 @@ def _frequencies(V, step, lo, hi, T, edge_share):
 def _esprit(y, step, lo, hi, max_tones, lags, rank_tol, edge_share):
     """The frequencies in [lo, hi] of the tones in y (module docstring), with the band's edges
     widened by ``edge_share`` of the window's resolution."""
-    H = _lag_matrix(y, lags)
-    if H is None:
+    yd = np.diff(y, 2)
+    L = min(lags, yd.size // 2)
+    if L < 3:
         return np.zeros(0)
-    L = H.shape[1]
-    ev, vec = np.linalg.eigh(H.T @ H)
+    ev, vec = np.linalg.eigh(_hankel_gram(yd, L))
     ev, vec = ev[::-1], vec[:, ::-1]
     if not ev[0] > 0:
         return np.zeros(0)
@@ -92,10 +124,14 @@ def _below_rank_tol(y, step, lo, hi, max_tones, lags, rank_tol, trend, edge_shar
 
 def _fit(tau, y, w, trend):
     """Least-squares amplitudes of tones w with a polynomial trend; (c, residual)."""
+    w = np.asarray(w, dtype=float)
     s = tau / max(-float(tau[0]), 1e-300)
-    cols = [s ** k for k in range(trend + 1)]
-    cols += [f(wi * tau) for wi in w for f in (np.cos, np.sin)]
-    B = np.column_stack(cols)
+    B = np.empty((tau.size, trend + 1 + 2 * w.size))
+    for k in range(trend + 1):
+        B[:, k] = s ** k
+    phase = tau[:, None] * w[None, :]
+    np.cos(phase, out=B[:, trend + 1::2])
+    np.sin(phase, out=B[:, trend + 2::2])
     coef, *_ = np.linalg.lstsq(B, y, rcond=None)
     a, b = coef[trend + 1::2], coef[trend + 2::2]
     res = y - B @ coef

@@ -41,7 +41,7 @@ import math
 import numpy as np
 
 from ._modal import Modal
-from ._tones import _fit, _frequencies
+from ._tones import _fit, _frequencies, _hankel_gram
 from ._validation import as_count, as_matrix, as_positive, check_type
 from .decisions import _scale_exponent
 from .exceptions import UnstableError
@@ -113,9 +113,8 @@ def raw_esprit(y, step: float, band, *, max_tones: int = 12, max_lags: int = DEF
     floor_factor = as_positive("floor_factor", floor_factor)
     rank_tol = as_positive("rank_tol", rank_tol)
     L = max(3, min(max_lags, y.size // 3))
-    H = np.lib.stride_tricks.sliding_window_view(y, L)
-    rows = H.shape[0]
-    ev, vec = np.linalg.eigh(H.T @ H)
+    rows = y.size - L + 1
+    ev, vec = np.linalg.eigh(_hankel_gram(y, L))
     ev, vec = ev[::-1], vec[:, ::-1]
     if not ev[0] > 0:
         return np.zeros(0)
@@ -265,8 +264,8 @@ class ConfidentPredictiveLaw(PredictiveLaw):
         # the held-out samples and the prediction without their slow part (a polynomial trend)
         s = (held_t - held_t[0]) / max(held_t[-1] - held_t[0], 1e-300)
         P = np.vander(s, 2)
-        proj = np.eye(m) - P @ np.linalg.pinv(P)
-        yp, pp = proj @ held_y, proj @ p
+        Pp = np.linalg.pinv(P)
+        yp, pp = held_y - P @ (Pp @ held_y), p - P @ (Pp @ p)
         den = float(pp @ pp)
         alpha = float(yp @ pp) / den if den > 0 else 0.0
         self.confidences.append((t, alpha))

@@ -451,15 +451,15 @@ class PredictiveLaw:
             sw, cw = tone_terms(t0, *pw[jw][2:])
             vw = cw[:, None] * Ff[None, :]
             s = [sd, sw]
-            b = [np.c_[cd[:, None] * B1[None, :], np.zeros((sd.size, zk.size))],
-                 np.c_[vw @ B2.T, cw[:, None] * Ef[None, :]]]
+            b = [np.hstack([cd[:, None] * B1[None, :], np.zeros((sd.size, zk.size))]),
+                 np.hstack([vw @ B2.T, cw[:, None] * Ef[None, :]])]
             dz = [cd[:, None] * D1[None, :], vw @ D2.T]
             if model is not None:
                 tm, w, c, g = model
                 cc = c * np.exp(1j * w * (t0 - tm)) / 2
                 vm = np.vstack([cc[:, None] * g, (cc.conj())[:, None] * g.conj()])
-                s.append(np.r_[1j * w, -1j * w])
-                b.append(np.c_[vm @ B2.T, np.zeros((vm.shape[0], zk.size))])
+                s.append(np.concatenate([1j * w, -1j * w]))
+                b.append(np.hstack([vm @ B2.T, np.zeros((vm.shape[0], zk.size))]))
                 dz.append(vm @ D2.T)
             s = np.concatenate(s)
             e, an, gz, x = self._modal.piece(x, s, np.zeros(s.size, dtype=bool), np.vstack(b),

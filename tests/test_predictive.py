@@ -156,3 +156,32 @@ def test_the_law_takes_the_same_decisions_at_any_scale_of_d():
     for run in (law.run, law.run_known):                                 # LinAlgError, NaN
         with pytest.raises(EnergyOverflowError, match=r"PredictiveLaw: the energy exceeds"):
             run(d.scaled(1e200), 10.0)
+
+
+@pytest.mark.parametrize("n, lags", [(12, 3), (50, 7), (481, 160), (3200, 160), (5, 1)])
+def test_hankel_gram_is_the_lag_matrix_gram(n, lags):
+    # the recurrence along the diagonals gives H.T @ H of the sliding-window lag matrix
+    from fdsc._tones import _hankel_gram
+
+    y = np.random.default_rng(n).standard_normal(n) + 3.0
+    H = np.lib.stride_tricks.sliding_window_view(y, lags)
+    G = H.T @ H
+    assert np.allclose(_hankel_gram(y, lags), G, rtol=0, atol=1e-13 * np.max(np.abs(G)))
+    assert np.array_equal(_hankel_gram(y, lags), _hankel_gram(y, lags).T)
+
+
+def test_merged_terms_sum_equal_exponents_in_order():
+    # terms of one exponent and anchor become one (their coefficients summed), the first
+    # occurrence's place kept; a term anchored elsewhere stays apart; -0.0 is 0.0
+    from fdsc._modal import Modal, _merged
+
+    e = np.array([1j, -2 + 0j, 1j, -0.0 + 3j, 0.0 + 3j, 1j])
+    a = np.array([False, False, False, False, False, True])
+    g = np.arange(12, dtype=float).reshape(6, 2)
+    ee, aa, gg = _merged(e, a, g)
+    assert ee.tolist() == [1j, -2, 3j, 1j] and aa.tolist() == [False, False, False, True]
+    assert gg.tolist() == [[4, 6], [2, 3], [14, 16], [10, 11]]
+    # the Gram is unchanged by the merge (z is linear in the coefficients)
+    G1 = Modal.gram(e, a, g + 1j, 0.7)
+    G2 = Modal.gram(ee, aa, gg + np.array([[2j], [1j], [2j], [1j]]), 0.7)
+    assert np.allclose(G1, G2, rtol=1e-13)
