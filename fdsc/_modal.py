@@ -160,15 +160,15 @@ def _merged(e, anchors, g):
     """The terms with equal exponent and anchor summed into the first of them (order kept)."""
     if e.size < 2:
         return e, anchors, g
+    keys = list(zip(e.real.tolist(), e.imag.tolist(), anchors.tolist(), strict=True))
     first = {}
-    for t, key in enumerate(zip(e.real.tolist(), e.imag.tolist(), anchors.tolist())):
+    for t, key in enumerate(keys):
         first.setdefault(key, t)
     if len(first) == e.size:
         return e, anchors, g
     keep = np.fromiter(first.values(), dtype=np.int64, count=len(first))
     slot = {key: r for r, key in enumerate(first)}
-    rank = np.fromiter((slot[key] for key in zip(e.real.tolist(), e.imag.tolist(), anchors.tolist())),
-                       dtype=np.int64, count=e.size)
+    rank = np.fromiter((slot[key] for key in keys), dtype=np.int64, count=e.size)
     merged = np.zeros((keep.size, g.shape[1]), dtype=np.result_type(g, complex))
     np.add.at(merged, rank, g)
     return e[keep], anchors[keep], merged

@@ -172,7 +172,8 @@ class AdaptiveFeedforward:
         P = E + np.eye(W0 + m)
         return np.ascontiguousarray(P), Qs, np.ascontiguousarray(G)
 
-    def run(self, d, horizon: float, *, estimate=None, x0=None) -> AdaptiveRun:
+    def run(self, d, horizon: float, *, estimate=None, x0=None, noise: float = 0.0,
+            seed: int = 0) -> AdaptiveRun:
         """The law on the disturbance d, reading the estimate (default ŵ = d).
 
         Parameters
@@ -184,6 +185,14 @@ class AdaptiveFeedforward:
             What the law reads as ŵ; default d.
         x0 : (n,) array_like, optional
             The plant's initial state (the base filter and the adaptation start at rest).
+        noise : float, optional
+            The variance of white Gaussian noise added to every sample of ŵ the law reads (its
+            FIR filter's input and the output it computes, ``C x + D1 ŵ + D2 u``), independent from
+            sample to sample (default 0: exact samples). The base's continuous filter reads ŵ
+            without it: add its expected cost as for :class:`fdsc.confident.ConfidentPredictiveLaw`.
+        seed : int, optional
+            Seeds the noise (:func:`numpy.random.default_rng`); the k-th sampling instant's noise
+            is the k-th normal deviate, whatever the pieces of d.
 
         Returns
         -------
@@ -194,12 +203,16 @@ class AdaptiveFeedforward:
         TypeError
             If d or estimate is not a Sinusoids or Piecewise.
         ValueError
-            If horizon or x0 is out of range.
+            If horizon or x0 is out of range, or noise is not a finite variance ≥ 0.
         EnergyOverflowError
             If the energy is not finite (it exceeds the float range).
         """
         check_type("d", d, Sinusoids | Piecewise, "an fdsc.Sinusoids or fdsc.Piecewise")
         H = as_positive("horizon", horizon)
+        var = float(noise) if isinstance(noise, (int, float)) and not isinstance(noise, bool) else math.nan
+        if not (var >= 0 and math.isfinite(var)):
+            raise ValueError(f"noise must be a variance (a finite number ≥ 0), but found {noise!r}")
+        check_type("seed", seed, int, "an int")
         if estimate is not None:
             check_type("estimate", estimate, Sinusoids | Piecewise, "an fdsc.Sinusoids or fdsc.Piecewise")
         p, h = self.plant, self.step
@@ -218,6 +231,11 @@ class AdaptiveFeedforward:
         energy, per_output, rows = 0.0, np.zeros(p.C.shape[0]), []
         steps, vmax = 0, 0.0
         tol = 1e-9 * max(1.0, H)
+        # the noise of every sampling instant in [0, H], drawn at once (0 without noise)
+        n_inst = math.ceil(H / h - 1e-9) + 1
+        nz = (math.sqrt(var) * np.random.default_rng(seed).standard_normal(n_inst) if var > 0
+              else np.zeros(n_inst))
+        d1 = np.ascontiguousarray(p.D1[:, 0], dtype=float)
         for j, (t0, t1, w, a, ph) in enumerate(parts):
             ch = None if chans is None else chans[j]
             T = w.size
@@ -247,7 +265,7 @@ class AdaptiveFeedforward:
                 full = k1 - k0 - (1 if (k1 - 1) * h + h > t1 + tol else 0)
                 eta, e_full, vm = _adapt_steps(eta, P, Qs, Gread, wrow, nX + 2 * T, m, full, k1 - k0,
                                                st.arrays(), self._Phis, self._Gams, self._Cs, self._Ds,
-                                               self._lam, self.regularization)
+                                               self._lam, self.regularization, nz[k0:k1], d1)
                 piece_e += e_full
                 vmax = max(vmax, vm)
                 steps += k1 - k0
@@ -275,10 +293,11 @@ def _partial(law, w, ch, eta, L):
 
 
 @njit(cache=True)
-def _adapt_steps(eta, P, Qs, Gread, wrow, vcol, m, full, count, state, Phis, Gams, Cs, Ds, lam, reg):
+def _adapt_steps(eta, P, Qs, Gread, wrow, vcol, m, full, count, state, Phis, Gams, Cs, Ds, lam, reg, nz, d1):
     """``count`` sampling instants of the law on one piece: at each, the adaptation and v; the
-    first ``full`` of them followed by a whole step of the loop. Returns η, the energy per output
-    of the whole steps and the largest ‖v‖."""
+    first ``full`` of them followed by a whole step of the loop. The law reads ŵ plus ``nz[i]`` at
+    the i-th (in its FIR filter and in the output ``C x + D1 ŵ + D2 u`` it computes, D1 = d1).
+    Returns η, the energy per output of the whole steps and the largest ‖v‖."""
     xi_v, v_prev, xi_r, w_prev, hist, wdelay, R, g = state
     N = wdelay.size
     M = m * N
@@ -288,7 +307,7 @@ def _adapt_steps(eta, P, Qs, Gread, wrow, vcol, m, full, count, state, Phis, Gam
     eta = eta.copy()
     Phi = np.empty((p, M))
     for i in range(count):
-        e0 = Gread @ eta - (Cs @ xi_v + Ds @ v_prev)
+        e0 = Gread @ eta + d1 * nz[i] - (Cs @ xi_v + Ds @ v_prev)
         for j in range(N - 1, 0, -1):
             hist[j] = hist[j - 1]
         for c in range(m):
@@ -302,7 +321,7 @@ def _adapt_steps(eta, P, Qs, Gread, wrow, vcol, m, full, count, state, Phis, Gam
         g += Phi.T @ e0
         delta = reg * np.trace(R) / M + 1e-300
         theta = -np.linalg.solve(R + delta * np.eye(M), g)
-        wk = wrow @ eta
+        wk = wrow @ eta + nz[i]
         for j in range(N - 1, 0, -1):
             wdelay[j] = wdelay[j - 1]
         wdelay[0] = wk

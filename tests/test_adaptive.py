@@ -3,6 +3,8 @@ it on held tones), with its filter held at zero against the fixed loop it then i
 closed form), its energy invariant to how a piece is cut and to the units of d, causal, and bad
 input by name."""
 
+import math
+
 import numpy as np
 import pytest
 
@@ -96,3 +98,35 @@ def test_bad_run_arguments_are_named():
     two = Plant(P2.A, np.c_[P2.B1, P2.B1], P2.B2, P2.C, np.c_[P2.D1, P2.D1], P2.D2)
     with pytest.raises(ValueError, match="one disturbance input"):
         AdaptiveFeedforward(two, 0.05)
+
+
+def _noisy_case():
+    from fdsc import Plant, Sinusoids
+    p = Plant([[0.0, 1.0], [-4.0, -0.4]], [[0.0], [1.0]], [[0.0], [1.0]],
+              [[1.0, 0.0], [0.0, 0.0]], [[0.0], [0.0]], [[0.0], [0.3]])
+    return AdaptiveFeedforward(p, 0.02, taps=8, memory=2.0), Sinusoids([1.0, 0.5], [3.0, 7.0])
+
+
+def test_noise_on_the_samples_costs_energy_and_is_seeded():
+    law, d = _noisy_case()
+    exact = law.run(d, 30.0).energy
+    assert law.run(d, 30.0, noise=0.0, seed=5).energy == exact          # no noise: the exact run
+    noisy = [law.run(d, 30.0, noise=1e-2, seed=s).energy for s in (1, 1, 2)]
+    assert noisy[0] == noisy[1] and noisy[0] != noisy[2]                 # seeded, and the seed matters
+    assert min(noisy) > exact                                            # noise the law reads costs energy
+    # more noise costs more (on average over seeds)
+    louder = np.mean([law.run(d, 30.0, noise=1.0, seed=s).energy for s in range(3)])
+    assert louder > np.mean(noisy)
+
+
+@pytest.mark.parametrize("noise", [-1.0, math.inf, math.nan, "0.1", True])
+def test_noise_must_be_a_variance(noise):
+    law, d = _noisy_case()
+    with pytest.raises(ValueError, match="noise must be a variance"):
+        law.run(d, 5.0, noise=noise)
+
+
+def test_seed_must_be_an_int():
+    law, d = _noisy_case()
+    with pytest.raises(TypeError, match="seed"):
+        law.run(d, 5.0, noise=0.1, seed=1.5)

@@ -123,7 +123,7 @@ def test_the_command_line_finds_the_paper_command_through_entry_points():
 
 
 @pytest.mark.parametrize(("argv", "status", "stream", "text"), [
-    ([], 2, "out", "commands: adaptive-rung, cold-times, disturbance-law, information, observer-rung, "
+    ([], 2, "out", "commands: adaptive-rung, cold-times, disturbance-law, information, observer-rung, part-two, "
      "reproduce, variant-laws"),
     (["--help"], 0, "out", "usage: python -m fdsc COMMAND"),
     (["frobnicate"], 2, "err", "unknown command 'frobnicate'"),

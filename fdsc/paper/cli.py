@@ -28,6 +28,9 @@ python -m fdsc observer-rung [--workers W] [--replace]
 python -m fdsc variant-laws [--workers W] [--replace]
                                      the predictive law with a confidence check on the class's
                                      variants (fdsc.paper.pays.variant_laws)
+python -m fdsc part-two [--n N] [--workers W] [--out DIR | --replace]
+                                     every study above at one commit, the full study first
+                                     (fdsc.paper.pays.part_two)
 """
 
 import argparse

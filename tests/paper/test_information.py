@@ -131,6 +131,36 @@ def test_the_adaptive_rung_chose_its_setting_on_training_draws(adapt, full):
         assert s["limit"][0] < 1.0 and set(s) == {"adaptive", "predictive", "limit"}
 
 
+def test_the_adaptive_rung_under_noise_chose_its_regularization_on_training_draws(adapt, full):
+    # its taps and memory are the exact estimate's, its regularization the best of the grid's on
+    # the training draws with the noise; the reference is the best fixed (x, ŵ) at that level
+    if "noise" not in adapt["aircraft"]:
+        pytest.skip("the stored adaptive rung predates its run under noise")
+    for e in EXAMPLES:
+        r, nz = adapt[e], adapt[e]["noise"]
+        assert nz["setting"][:2] == r["setting"][:2]
+        assert {float(k.split("/")[2]) for k in nz["train_scores"]} == {g[2] for g in ar.GRID}
+        best = min(nz["train_scores"], key=nz["train_scores"].get)
+        assert best == "/".join(f"{v:g}" for v in nz["setting"])
+        n = len(r["test_indices"])
+        assert len(nz["energies"]) == len(nz["reference_energies"]) == len(nz["horizons"]) == n
+        # no causal law passes the non-causal limit, noise or not
+        assert np.all(np.asarray(nz["energies"]) >= np.asarray(r["limit_energies"]))
+        med, lo, hi, wins = ar.noise_summary(adapt, e)
+        assert lo <= med <= hi and 0.0 <= wins <= 1.0
+
+
+def test_the_adaptive_laws_noisy_energy_recomputes_on_a_stored_draw(adapt, full):
+    if "noise" not in adapt["generic"]:
+        pytest.skip("the stored adaptive rung predates its run under noise")
+    nz = adapt["generic"]["noise"]
+    dz = inf.level_design("generic", adapt["noise_level"], full)
+    i = adapt["generic"]["test_indices"][0]
+    e = ar.adaptive_energy("generic", i, full["seed"], tuple(nz["setting"]), dz["optimal"].controller,
+                           nz["variance"], nz["base_noise_power"])
+    assert e == pytest.approx(nz["energies"][0], rel=1e-6)
+
+
 def test_the_recheck_of_a_level_where_the_law_does_not_predict_recomputes_the_reference(info, full):
     # a copy of the stored study with the law set not to predict at 20 dB on the generic example:
     # the recheck then recomputes the reference controller's energy, which the stored row holds

@@ -120,7 +120,8 @@ def test_bad_input_is_refused_by_name(full):
 def test_the_command_refuses_bad_arguments(capsys):
     with pytest.raises(SystemExit):
         vl.main(["--workers", "0"])
-    assert "--workers ≥ 1 and --n-train in [1, 12] are required" in capsys.readouterr().err
+    assert "--workers must be at least 1, but found 0" in capsys.readouterr().err
     with pytest.raises(SystemExit):
         vl.main(["--n-train", "20"])
+    assert "--n-train must be in [1, 12], but found 20" in capsys.readouterr().err
 

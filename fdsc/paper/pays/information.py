@@ -31,11 +31,8 @@ plant's.
 
 from __future__ import annotations
 
-import json
 import math
-import os
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -46,7 +43,8 @@ from fdsc.confident import ConfidentPredictiveLaw
 from fdsc.measurement_noise import noise_density, noise_loop, noise_power, optimal_lti_in_noise
 from fdsc.paper.pays.disturbance_law_draws import _example, seeded_draw, segment_class
 from fdsc.paper.pays.ladder import MAX_TONES, law_band
-from fdsc.paper.pays.stored_study import load_full, map_draws, stored_fixed_set
+from fdsc.paper.pays.stored_study import map_draws, stored_fixed_set
+from fdsc.paper.pays.study_command import load_stored, study_main
 from fdsc.paper.shared.stats import bootstrap_median
 
 __all__ = ["LEVELS", "N_TEST", "N_TRAIN", "WINDOWS", "FALLBACK", "CONFIDENCE", "DELAY_LEVEL", "SCALES",
@@ -407,10 +405,7 @@ def load_information(path=None):
     dict or None
         None if the file is absent.
     """
-    path = Path(__file__).resolve().parents[3] / INFO_FILE if path is None else Path(path)
-    if not path.is_file():
-        return None
-    return json.loads(path.read_text(encoding="utf-8"))
+    return load_stored(INFO_FILE, path)
 
 
 def recheck(info: dict, full: dict, example: str = "generic", level: str = "20 dB", k: int = 0) -> dict:
@@ -456,7 +451,8 @@ def recheck(info: dict, full: dict, example: str = "generic", level: str = "20 d
 
 
 def main(argv=None) -> int:
-    """``python -m fdsc information [--workers W] [--n-test N] [--n-train N] [--out FILE | --replace]``.
+    """``python -m fdsc information [--workers W] [--n-test N] [--n-train N] [--out FILE | --replace]``
+    (:func:`fdsc.paper.pays.study_command.study_main`).
 
     Parameters
     ----------
@@ -467,41 +463,10 @@ def main(argv=None) -> int:
     int
         0 on success.
     """
-    import argparse
-    from concurrent.futures import ProcessPoolExecutor
-
-    ap = argparse.ArgumentParser(prog="python -m fdsc information",
-                                 description="the ladder under measurement noise, on the stored study's "
-                                             "draws")
-    ap.add_argument("--workers", type=int, default=min(os.cpu_count() or 1, 4))
-    ap.add_argument("--n-test", type=int, default=N_TEST)
-    ap.add_argument("--n-train", type=int, default=N_TRAIN)
-    ap.add_argument("--out", default="out/information_study.json")
-    ap.add_argument("--replace", action="store_true", help=f"write {INFO_FILE}, which the book reads")
-    args = ap.parse_args(argv)
-    if args.workers < 1 or args.n_test < 2 or args.n_train < 1:
-        ap.error("--workers ≥ 1, --n-test ≥ 2 and --n-train ≥ 1 are required")
-    full = load_full()
-    if full is None:
-        ap.error(f"the stored study {Path('book') / 'data' / 'disturbance_law_full.json'} is missing")
-    out = Path(__file__).resolve().parents[3] / INFO_FILE if args.replace else Path(args.out)
-    import multiprocessing
-
-    # one BLAS thread per worker (spawned, so that the setting holds): several workers each
-    # spinning several BLAS threads on the same cores run many times slower
-    for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
-        os.environ.setdefault(var, "1")
-    t0, load0 = time.perf_counter(), os.getloadavg()[0]
-    with ProcessPoolExecutor(args.workers, mp_context=multiprocessing.get_context("spawn")) as ex:
-        info = information_study(full, n_test=args.n_test, n_train=args.n_train, executor=ex)
-    info["seconds"] = round(time.perf_counter() - t0, 1)
-    info["host"] = {"cpus": os.cpu_count(), "workers": args.workers, "load_before": round(load0, 2),
-                    "load_after": round(os.getloadavg()[0], 2)}
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(json.dumps(info, indent=1) + "\n", encoding="utf-8")
-    print(f"information study: {info['seconds']:.0f} s on {args.workers} workers; written to {out}",
-          file=sys.stderr)
-    return 0
+    return study_main(argv, prog="python -m fdsc information",
+                      description="the ladder under measurement noise, on the stored study's draws",
+                      file=INFO_FILE, study=information_study,
+                      options=(("n_test", N_TEST, 2, None), ("n_train", N_TRAIN, 1, None)))
 
 
 if __name__ == "__main__":

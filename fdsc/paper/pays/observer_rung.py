@@ -42,11 +42,8 @@ names are re-exported here).
 
 from __future__ import annotations
 
-import json
 import math
-import os
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -66,7 +63,8 @@ from fdsc.paper.pays.observer_loop import (
     sensor_noise_power,
     with_observer,
 )
-from fdsc.paper.pays.stored_study import load_full, map_draws, stored_fixed_set
+from fdsc.paper.pays.stored_study import map_draws, stored_fixed_set
+from fdsc.paper.pays.study_command import load_stored, study_main
 from fdsc.paper.shared.stats import bootstrap_median
 from fdsc.plant import LTISystem
 
@@ -378,7 +376,7 @@ def summary(res: dict, example: str) -> list:
 
 
 def load_observer(path=None):
-    """The stored study of this module (None if absent).
+    """The stored study of this module.
 
     Parameters
     ----------
@@ -388,15 +386,14 @@ def load_observer(path=None):
     Returns
     -------
     dict or None
+        None if the file is absent.
     """
-    path = Path(__file__).resolve().parents[3] / OBSERVER_FILE if path is None else Path(path)
-    if not path.is_file():
-        return None
-    return json.loads(path.read_text(encoding="utf-8"))
+    return load_stored(OBSERVER_FILE, path)
 
 
 def main(argv=None) -> int:
-    """``python -m fdsc observer-rung [--workers W] [--n-test N] [--n-train N] [--out FILE | --replace]``.
+    """``python -m fdsc observer-rung [--workers W] [--n-test N] [--n-train N] [--out FILE | --replace]``
+    (:func:`fdsc.paper.pays.study_command.study_main`).
 
     Parameters
     ----------
@@ -407,41 +404,11 @@ def main(argv=None) -> int:
     int
         0 on success.
     """
-    import argparse
-    import multiprocessing
-    import resource
-    from concurrent.futures import ProcessPoolExecutor
-
-    ap = argparse.ArgumentParser(prog="python -m fdsc observer-rung",
-                                 description="the ladder with ŵ from a disturbance observer on noisy "
-                                             "measurements of x, on the stored study's draws")
-    ap.add_argument("--workers", type=int, default=min(os.cpu_count() or 1, 4))
-    ap.add_argument("--n-test", type=int, default=N_TEST)
-    ap.add_argument("--n-train", type=int, default=N_TRAIN)
-    ap.add_argument("--out", default="out/observer_rung.json")
-    ap.add_argument("--replace", action="store_true", help=f"write {OBSERVER_FILE}, which the book reads")
-    args = ap.parse_args(argv)
-    if args.workers < 1 or args.n_test < 2 or args.n_train < 1:
-        ap.error("--workers ≥ 1, --n-test ≥ 2 and --n-train ≥ 1 are required")
-    full = load_full()
-    if full is None:
-        ap.error(f"the stored study {Path('book') / 'data' / 'disturbance_law_full.json'} is missing")
-    out = Path(__file__).resolve().parents[3] / OBSERVER_FILE if args.replace else Path(args.out)
-    for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
-        os.environ.setdefault(var, "1")
-    t0, load0 = time.perf_counter(), os.getloadavg()[0]
-    with ProcessPoolExecutor(args.workers, mp_context=multiprocessing.get_context("spawn")) as ex:
-        res = observer_study(full, n_test=args.n_test, n_train=args.n_train, executor=ex)
-    res["seconds"] = round(time.perf_counter() - t0, 1)
-    cpu = sum(u.ru_utime + u.ru_stime for u in (resource.getrusage(resource.RUSAGE_SELF),
-                                                  resource.getrusage(resource.RUSAGE_CHILDREN)))
-    res["host"] = {"cpus": os.cpu_count(), "workers": args.workers, "cpu_seconds": round(cpu, 1),
-                   "load_before": round(load0, 2), "load_after": round(os.getloadavg()[0], 2)}
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(json.dumps(res, indent=1) + "\n", encoding="utf-8")
-    print(f"observer rung: {res['seconds']:.0f} s on {args.workers} workers; written to {out}",
-          file=sys.stderr)
-    return 0
+    return study_main(argv, prog="python -m fdsc observer-rung",
+                      description="the ladder with ŵ from a disturbance observer on noisy measurements of x, "
+                                  "on the stored study's draws",
+                      file=OBSERVER_FILE, study=observer_study,
+                      options=(("n_test", N_TEST, 2, None), ("n_train", N_TRAIN, 1, None)))
 
 
 if __name__ == "__main__":

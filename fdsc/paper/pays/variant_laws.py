@@ -24,11 +24,8 @@ example, with the exact estimate ŵ = d:
 
 from __future__ import annotations
 
-import json
 import math
-import os
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -40,7 +37,8 @@ from fdsc.paper.pays.disturbance_law_draws import _example, segment_class
 from fdsc.paper.pays.information import CONFIDENCE, FALLBACK, UPDATE, WINDOWS
 from fdsc.paper.pays.ladder import MAX_TONES, law_band
 from fdsc.paper.pays.ladder_variants import N_TEST_VARIANT, N_TUNE_VARIANT, VARIANTS, variant_draw
-from fdsc.paper.pays.stored_study import load_full, map_draws
+from fdsc.paper.pays.stored_study import map_draws
+from fdsc.paper.pays.study_command import load_stored, study_main
 from fdsc.paper.shared.stats import bootstrap_median
 
 __all__ = ["N_TRAIN", "FALLBACK", "VARIANT_FILE", "RUNGS", "variant_base", "law_run", "base_energy",
@@ -270,10 +268,7 @@ def load_variant_laws(path=None):
     dict or None
         None if the file is absent.
     """
-    path = Path(__file__).resolve().parents[3] / VARIANT_FILE if path is None else Path(path)
-    if not path.is_file():
-        return None
-    return json.loads(path.read_text(encoding="utf-8"))
+    return load_stored(VARIANT_FILE, path)
 
 
 def recheck(res: dict, example: str = "generic", variant: str = "noise", k: int = 0) -> dict:
@@ -304,7 +299,8 @@ def recheck(res: dict, example: str = "generic", variant: str = "noise", k: int 
 
 
 def main(argv=None) -> int:
-    """``python -m fdsc variant-laws [--workers W] [--n-train N] [--out FILE | --replace]``.
+    """``python -m fdsc variant-laws [--workers W] [--n-train N] [--out FILE | --replace]``
+    (:func:`fdsc.paper.pays.study_command.study_main`).
 
     Parameters
     ----------
@@ -315,41 +311,11 @@ def main(argv=None) -> int:
     int
         0 on success.
     """
-    import argparse
-    import multiprocessing
-    import resource
-    from concurrent.futures import ProcessPoolExecutor
-
-    ap = argparse.ArgumentParser(prog="python -m fdsc variant-laws",
-                                 description="the predictive law with a confidence check on the class's "
-                                             "variants, on the stored study's variant draws")
-    ap.add_argument("--workers", type=int, default=min(os.cpu_count() or 1, 4))
-    ap.add_argument("--n-train", type=int, default=N_TRAIN)
-    ap.add_argument("--out", default="out/variant_laws.json")
-    ap.add_argument("--replace", action="store_true", help=f"write {VARIANT_FILE}, which the book reads")
-    args = ap.parse_args(argv)
-    if args.workers < 1 or not 1 <= args.n_train <= N_TUNE_VARIANT:
-        ap.error(f"--workers ≥ 1 and --n-train in [1, {N_TUNE_VARIANT}] are required")
-    full = load_full()
-    if full is None:
-        ap.error(f"the stored study {Path('book') / 'data' / 'disturbance_law_full.json'} is missing")
-    out = Path(__file__).resolve().parents[3] / VARIANT_FILE if args.replace else Path(args.out)
-    # one BLAS thread per worker (spawned, so that the setting holds)
-    for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
-        os.environ.setdefault(var, "1")
-    t0, load0 = time.perf_counter(), os.getloadavg()[0]
-    with ProcessPoolExecutor(args.workers, mp_context=multiprocessing.get_context("spawn")) as ex:
-        res = variant_law_study(full, n_train=args.n_train, executor=ex)
-    res["seconds"] = round(time.perf_counter() - t0, 1)
-    cpu = sum(u.ru_utime + u.ru_stime for u in (resource.getrusage(resource.RUSAGE_SELF),
-                                                  resource.getrusage(resource.RUSAGE_CHILDREN)))
-    res["host"] = {"cpus": os.cpu_count(), "workers": args.workers, "cpu_seconds": round(cpu, 1),
-                   "load_before": round(load0, 2), "load_after": round(os.getloadavg()[0], 2)}
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(json.dumps(res, indent=1) + "\n", encoding="utf-8")
-    print(f"variant laws: {res['seconds']:.0f} s on {args.workers} workers; written to {out}",
-          file=sys.stderr)
-    return 0
+    return study_main(argv, prog="python -m fdsc variant-laws",
+                      description="the predictive law with a confidence check on the class's variants, "
+                                  "on the stored study's variant draws",
+                      file=VARIANT_FILE, study=variant_law_study,
+                      options=(("n_train", N_TRAIN, 1, N_TUNE_VARIANT),))
 
 
 if __name__ == "__main__":

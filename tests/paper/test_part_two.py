@@ -1,0 +1,68 @@
+"""The studies' shared command line (fdsc.paper.pays.study_command) and the run of every study of
+Part II at one commit (fdsc.paper.pays.part_two): arguments refused by name before computing, the
+smaller studies a small full study asks, and a stored study read back."""
+
+import json
+
+import pytest
+
+from fdsc.paper.pays import adaptive_rung, information, observer_rung, part_two, variant_laws
+from fdsc.paper.pays.study_command import load_stored, run_on_pool, study_main
+
+
+def test_a_stored_study_is_read_back_and_an_absent_one_is_none(tmp_path):
+    assert load_stored("book/data/no_such_study.json") is None
+    f = tmp_path / "s.json"
+    f.write_text(json.dumps({"a": [1, 2]}))
+    assert load_stored("ignored", f) == {"a": [1, 2]}
+
+
+def _echo(full, *, executor, k=1):
+    return {"full": full, "k": k, "mapped": list(executor.map(abs, [-k, 2]))}
+
+
+def test_a_study_runs_on_a_pool_with_its_time_and_host():
+    res = run_on_pool(_echo, {"n": 4}, 1, k=3)
+    assert res["full"] == {"n": 4} and res["mapped"] == [3, 2]
+    assert res["seconds"] >= 0 and res["host"]["workers"] == 1 and res["host"]["cpu_seconds"] >= 0
+    with pytest.raises(ValueError, match="workers"):
+        run_on_pool(_echo, {}, 0)
+
+
+@pytest.mark.parametrize(("argv", "message"), [
+    (["--workers", "0"], "--workers must be at least 1, but found 0"),
+    (["--n-test", "1"], "--n-test must be at least 2, but found 1"),
+    (["--n-train", "0"], "--n-train must be at least 1, but found 0"),
+])
+def test_a_study_command_refuses_bad_arguments_before_computing(argv, message, capsys):
+    for mod in (information, adaptive_rung, observer_rung):
+        with pytest.raises(SystemExit):
+            mod.main(argv)
+        assert message in capsys.readouterr().err
+
+
+def test_a_study_command_names_its_option_range(capsys):
+    with pytest.raises(SystemExit):
+        study_main(["--k", "9"], prog="p", description="d", file="book/data/x.json", study=_echo,
+                   options=(("k", 1, 1, 4),))
+    assert "--k must be in [1, 4], but found 9" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(("argv", "message"), [
+    (["--n", "3"], "--n must be at least 4, but found 3"),
+    (["--workers", "0"], "--workers must be at least 1, but found 0"),
+])
+def test_part_two_refuses_bad_arguments_before_computing(argv, message, capsys):
+    with pytest.raises(SystemExit):
+        part_two.main(argv)
+    assert message in capsys.readouterr().err
+
+
+def test_a_smaller_full_study_asks_fewer_draws_of_the_others():
+    # the default run keeps every study's own sizes; a small one fits them in the full study's test draws
+    full_size = {name: part_two._sizes(getattr(__import__(m, fromlist=[f]), f), 500)
+                 for name, m, f, _file in part_two.STUDIES}
+    assert full_size["information"] == {"n_test": information.N_TEST, "n_train": information.N_TRAIN}
+    assert full_size["variant laws"] == {"n_train": variant_laws.N_TRAIN}
+    assert part_two._sizes(information.information_study, 8) == {"n_test": 2, "n_train": 2}
+    assert part_two._sizes(information.information_study, 4) == {"n_test": 2, "n_train": 1}
