@@ -11,8 +11,8 @@ from fdsc.paper.pays.information import FALLBACK, summary
 from fdsc.paper.shared.prose import num, pct, times_ci
 from fdsc.paper.shared.stats import bootstrap_median
 
-__all__ = ["noise_pays_words", "adaptive_vs_predictive", "adaptive_words", "variant_verdicts",
-           "variant_words", "variant_short", "VARIANT_CLAUSE"]
+__all__ = ["noise_pays_words", "adaptive_vs_predictive", "adaptive_words", "adaptive_noise_words",
+           "variant_verdicts", "variant_words", "variant_short", "VARIANT_CLAUSE"]
 
 #: The examples in the words of the pages.
 WHERE = {"aircraft": "aircraft", "generic": "generic example"}
@@ -200,6 +200,53 @@ def adaptive_words(adapt, numbers=True, confident=None, only_confident=False):
                 + "; ".join(f"{v} {where(w)}" for v, w in cverdicts.items()) if not numbers else
             "; over the law with a confidence check it has " + " and ".join(cparts))
     return out
+
+
+def adaptive_noise_words(adapt, info):
+    """The adaptive law with noise on its samples against the best fixed controller at the same
+    level and beside the law with a confidence check there, on the same draws, in words.
+
+    Parameters
+    ----------
+    adapt : dict
+        The stored adaptive study, with its run under noise (``adapt[example]["noise"]``).
+    info : dict
+        The stored noise study: its row at the adaptive study's level holds the law with a
+        confidence check and the best fixed controller on the same draws.
+
+    Returns
+    -------
+    str
+        E.g. ``"with white noise on its samples at 20 dB, the adaptive law has ×0.93 [0.90, 0.95]
+        of the best fixed controller at that level on the aircraft (less energy on 100 % of the
+        draws) and …; the law with a confidence check has ×… and ×… there"``.
+
+    Raises
+    ------
+    ValueError
+        If the two studies' draws or their best fixed controller's energies differ (one reference
+        behind both).
+    """
+    level = f"{adapt['noise_level']:g} dB"
+    mine, theirs = [], []
+    for e, name in WHERE.items():
+        nz, n = adapt[e]["noise"], len(adapt[e]["test_indices"])
+        row = info[e][level]
+        if info[e]["test_indices"][:n] != adapt[e]["test_indices"]:
+            raise ValueError(f"{name}: the adaptive study and the noise study do not share their test draws")
+        ref = np.asarray(row["energies"]["best fixed (x, ŵ)"][:n], float)
+        if not np.allclose(ref, nz["reference_energies"], rtol=1e-6, atol=0):
+            raise ValueError(f"{name}: the best fixed controller at {level} has other energies in the "
+                             "adaptive study than in the noise study")
+        x = np.asarray(nz["energies"], float) / ref
+        med, lo, hi = bootstrap_median(x)
+        mine.append(f"{times_ci({'median': med, 'low': lo, 'high': hi})} on the {name} (less energy on "
+                    f"{pct(float(np.mean(x < 1.0)))} of the draws)")
+        y = np.asarray(row["energies"]["predictive (confident)"][:n], float) / ref
+        theirs.append(times_ci(dict(zip(("median", "low", "high"), bootstrap_median(y), strict=True))))
+    return (f"with white noise on its samples at {level}, the adaptive law has {' and '.join(mine)} of the "
+            "best fixed controller at that level; the law with a confidence check has "
+            f"{' and '.join(theirs)} there, on the same draws")
 
 
 def variant_verdicts(rows):
