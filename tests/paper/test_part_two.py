@@ -66,3 +66,37 @@ def test_a_smaller_full_study_asks_fewer_draws_of_the_others():
     assert full_size["variant laws"] == {"n_train": variant_laws.N_TRAIN}
     assert part_two._sizes(information.information_study, 8) == {"n_test": 2, "n_train": 2}
     assert part_two._sizes(information.information_study, 4) == {"n_test": 2, "n_train": 1}
+
+
+def test_the_files_wait_untracked_until_the_last_study_ends(tmp_path, monkeypatch):
+    # every study records whether the tree was clean: no output may land in the folder before the end
+    import sys
+    import types
+    from pathlib import Path
+
+    from fdsc.paper.pays import study_command
+
+    seen = []
+
+    def fake_pool(study, full, workers, **kwargs):
+        seen.append(sorted(p.name for p in tmp_path.iterdir()))        # what the folder holds now
+        res = ({"commit": "c", "fingerprint": "f", "n": kwargs.get("n")} if full is None
+               else {"study": study.__name__, "read": full["commit"]})
+        return res | {"seconds": 1.0, "host": {"cpu_seconds": 2.0}}
+
+    def a(full, *, executor=None):
+        return {}
+
+    def b(full, *, executor=None, n_test=24, n_train=4):
+        return {}
+
+    monkeypatch.setattr(study_command, "run_on_pool", fake_pool)
+    monkeypatch.setitem(sys.modules, "fake_a", types.SimpleNamespace(a=a, FILE=Path("book/data/a.json")))
+    monkeypatch.setitem(sys.modules, "fake_b", types.SimpleNamespace(b=b, FILE=Path("book/data/b.json")))
+    monkeypatch.setattr(part_two, "STUDIES", (("A", "fake_a", "a", "FILE"), ("B", "fake_b", "b", "FILE")))
+    rec = part_two.part_two(8, 1, tmp_path)
+    assert seen == [[part_two.PENDING]] * 3                               # only the pending folder, each time
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.json", "b.json", "disturbance_law_full.json"]
+    assert json.loads((tmp_path / "b.json").read_text())["read"] == "c"   # the studies read the full study
+    assert rec["commit"] == "c" and set(rec["studies"]) == {"full study", "A", "B"}
+    assert rec["studies"]["B"] == {"file": "b.json", "seconds": 1.0, "cpu_seconds": 2.0}

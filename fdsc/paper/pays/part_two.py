@@ -7,6 +7,11 @@ noise study (:mod:`~fdsc.paper.pays.information`), the adaptive rung
 (:mod:`~fdsc.paper.pays.variant_laws`) and the disturbance observer
 (:mod:`~fdsc.paper.pays.observer_rung`). Each is written where its own command writes it, with
 its wall time, CPU time and host; :data:`RUN_FILE` holds the whole run's (the book states it).
+
+The files are kept in a pending folder (untracked) until the last study ends and then moved into
+place, so that the tree stays clean while the studies run: each study records the commit it was
+computed at and whether the tree had uncommitted changes, and a study's own output written into a
+tracked file would count as one.
 """
 
 from __future__ import annotations
@@ -17,7 +22,7 @@ import sys
 import time
 from pathlib import Path
 
-__all__ = ["STUDIES", "RUN_FILE", "part_two", "main"]
+__all__ = ["STUDIES", "RUN_FILE", "PENDING", "part_two", "main"]
 
 #: The studies on the full study's draws, in the order they run: (name, module, function, file).
 STUDIES = (("information", "fdsc.paper.pays.information", "information_study", "INFO_FILE"),
@@ -26,6 +31,8 @@ STUDIES = (("information", "fdsc.paper.pays.information", "information_study", "
            ("observer rung", "fdsc.paper.pays.observer_rung", "observer_study", "OBSERVER_FILE"))
 #: The record of the whole run (relative to the repository's root).
 RUN_FILE = Path("book") / "data" / "part_two_run.json"
+#: Where the files wait (inside the folder written) until the last study ends.
+PENDING = ".part_two_pending"
 
 
 def _full(_unused, *, executor, n):
@@ -73,12 +80,13 @@ def part_two(n: int, workers: int, folder) -> dict:
     from fdsc.paper.pays.study_command import run_on_pool
 
     folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
+    pending = folder / PENDING
+    pending.mkdir(parents=True, exist_ok=True)
     t0, load0 = time.perf_counter(), os.getloadavg()[0]
     full = run_on_pool(_full, None, workers, n=n)
     full["host"]["scheduler"] = False
     text = json.dumps(full, indent=1)
-    (folder / FULL_FILE.name).write_text(text, encoding="utf-8")
+    (pending / FULL_FILE.name).write_text(text, encoding="utf-8")
     full = json.loads(text)                # the studies on it read what the book reads
     done = {"full study": {"file": FULL_FILE.name, "seconds": full["seconds"],
                            "cpu_seconds": full["host"]["cpu_seconds"]}}
@@ -87,10 +95,13 @@ def part_two(n: int, workers: int, folder) -> dict:
         mod = importlib.import_module(module)
         study = getattr(mod, function)
         res = run_on_pool(study, full, workers, **_sizes(study, n))
-        path = folder / getattr(mod, file).name
+        path = pending / getattr(mod, file).name
         path.write_text(json.dumps(res, indent=1) + "\n", encoding="utf-8")
         done[name] = {"file": path.name, "seconds": res["seconds"], "cpu_seconds": res["host"]["cpu_seconds"]}
         print(f"part two: {name} took {res['seconds']:.0f} s", file=sys.stderr, flush=True)
+    for f in [FULL_FILE.name, *(v["file"] for k, v in done.items() if k != "full study")]:
+        (pending / f).replace(folder / f)
+    pending.rmdir()
     return {"commit": full["commit"], "fingerprint": full["fingerprint"], "n": n, "studies": done,
             "seconds": round(time.perf_counter() - t0, 1),
             "host": {"cpus": os.cpu_count(), "workers": workers, "load_before": round(load0, 2),
@@ -136,7 +147,8 @@ def main(argv=None) -> int:
         from fdsc.paper.shared.fixed_choice import FILE, write_choice
 
         write_choice(load_full(folder / "disturbance_law_full.json"), REPO / "fdsc" / "paper" / "data" / FILE)
-    print(f"part two: {record['seconds']:.0f} s on {args.workers} workers; written to {folder}", file=sys.stderr)
+    print(f"part two: {record['seconds']:.0f} s on {args.workers} workers; written to {folder}",
+          file=sys.stderr)
     return 0
 
 
