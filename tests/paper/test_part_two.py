@@ -100,3 +100,64 @@ def test_the_files_wait_untracked_until_the_last_study_ends(tmp_path, monkeypatc
     assert json.loads((tmp_path / "b.json").read_text())["read"] == "c"   # the studies read the full study
     assert rec["commit"] == "c" and set(rec["studies"]) == {"full study", "A", "B"}
     assert rec["studies"]["B"] == {"file": "b.json", "seconds": 1.0, "cpu_seconds": 2.0}
+
+
+def test_a_stopped_run_is_taken_up_from_its_first_missing_or_stale_study(tmp_path, monkeypatch):
+    import sys
+    import types
+    from pathlib import Path
+
+    from fdsc.paper.pays import study_command
+    from fdsc.paper.shared import cache, environment
+
+    computed, fail = [], {"B"}
+    prints = {"fake_a": "fa", "fake_b": "fb", "fdsc.paper.pays.disturbance_law_full": "ff"}
+
+    def fake_pool(study, full, workers, **kwargs):
+        name = "full" if full is None else study.__name__.upper()
+        if name in fail:
+            raise KeyboardInterrupt                                       # the machine stops here
+        computed.append(name)
+        module = "fdsc.paper.pays.disturbance_law_full" if full is None else f"fake_{name.lower()}"
+        return {"commit": "c", "fingerprint": prints[module], "n": kwargs.get("n"), "seconds": 5.0,
+                "host": {"cpu_seconds": 9.0}}
+
+    def a(full, *, executor=None):
+        return {}
+
+    def b(full, *, executor=None):
+        return {}
+
+    monkeypatch.setattr(study_command, "run_on_pool", fake_pool)
+    monkeypatch.setattr(environment, "build_commit", lambda: "c")
+    monkeypatch.setattr(cache, "study_fingerprint", lambda module: prints[module])
+    monkeypatch.setitem(sys.modules, "fake_a", types.SimpleNamespace(a=a, FILE=Path("book/data/a.json")))
+    monkeypatch.setitem(sys.modules, "fake_b", types.SimpleNamespace(b=b, FILE=Path("book/data/b.json")))
+    monkeypatch.setattr(part_two, "STUDIES", (("A", "fake_a", "a", "FILE"), ("B", "fake_b", "b", "FILE")))
+    with pytest.raises(KeyboardInterrupt):
+        part_two.part_two(8, 1, tmp_path)
+    assert computed == ["full", "A"] and (tmp_path / part_two.PENDING / "a.json").is_file()
+
+    # taken up: the full study and A are read back, B is computed
+    computed.clear(), fail.clear()
+    rec = part_two.part_two(8, 1, tmp_path, resume=True)
+    assert computed == ["B"] and rec["resumed"] == ["full study", "A"]
+    assert rec["seconds"] == 15.0 and rec["studies"]["A"]["cpu_seconds"] == 9.0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.json", "b.json", "disturbance_law_full.json"]
+
+    # a stale study (its sources changed) is computed again, and so is every study after it, even a fresh one
+    for f in ("disturbance_law_full.json", "a.json", "b.json"):
+        (tmp_path / part_two.PENDING).mkdir(exist_ok=True)
+        (tmp_path / f).replace(tmp_path / part_two.PENDING / f)
+    computed.clear()
+    prints["fake_a"] = "fa2"
+    assert part_two.part_two(8, 1, tmp_path, resume=True)["resumed"] == ["full study"]
+    assert computed == ["A", "B"]
+
+    # a full study of another size is not read back; without resume nothing is
+    computed.clear()
+    (tmp_path / part_two.PENDING).mkdir()
+    for f in ("disturbance_law_full.json", "a.json", "b.json"):
+        (tmp_path / f).replace(tmp_path / part_two.PENDING / f)
+    assert part_two.part_two(6, 1, tmp_path, resume=True)["resumed"] == []
+    assert part_two.part_two(8, 1, tmp_path)["resumed"] == [] and computed == ["full", "A", "B"] * 2

@@ -12,6 +12,11 @@ The files are kept in a pending folder (untracked) until the last study ends and
 place, so that the tree stays clean while the studies run: each study records the commit it was
 computed at and whether the tree had uncommitted changes, and a study's own output written into a
 tracked file would count as one.
+
+A run stopped part-way (a machine shut down after hours) is taken up with ``--resume``: every
+study whose file in the pending folder was computed at this commit, with the sources it depends
+on unchanged (and, for the full study, the same number of draws), is read back instead of
+recomputed, up to the first that is missing or stale; that one and all after it are computed.
 """
 
 from __future__ import annotations
@@ -19,7 +24,6 @@ from __future__ import annotations
 import json
 import os
 import sys
-import time
 from pathlib import Path
 
 __all__ = ["STUDIES", "RUN_FILE", "PENDING", "part_two", "main"]
@@ -55,7 +59,22 @@ def _sizes(study, n):
     return out
 
 
-def part_two(n: int, workers: int, folder) -> dict:
+def _reusable(path, module, n=None):
+    """The study stored at ``path`` if it was computed at this commit from unchanged sources (and
+    with ``n`` draws per example, when given), else None."""
+    from fdsc.paper.shared.cache import study_fingerprint
+    from fdsc.paper.shared.environment import build_commit
+
+    if not path.is_file():
+        return None
+    res = json.loads(path.read_text(encoding="utf-8"))
+    if (res.get("commit") != build_commit() or res.get("fingerprint") != study_fingerprint(module)
+            or (n is not None and res.get("n") != n)):
+        return None
+    return res
+
+
+def part_two(n: int, workers: int, folder, resume: bool = False) -> dict:
     """Run every study (module docstring) on ``workers`` processes and write each to ``folder``
     under its stored file's name.
 
@@ -67,12 +86,15 @@ def part_two(n: int, workers: int, folder) -> dict:
     workers : int
     folder : path
         Where the files go (the repository's ``book/data`` to replace the stored studies).
+    resume : bool, optional
+        Read back the studies a stopped run left in the pending folder (module docstring).
 
     Returns
     -------
     dict
         The run's record: ``commit``, ``fingerprint`` (the full study's), ``studies`` ({name:
-        {"file", "seconds", "cpu_seconds"}}), ``seconds`` (the whole run's wall time), ``host``.
+        {"file", "seconds", "cpu_seconds"}}), ``seconds`` (the sum of the studies' wall times),
+        ``resumed`` (the names of the studies read back, empty unless ``resume``), ``host``.
     """
     import importlib
 
@@ -82,36 +104,50 @@ def part_two(n: int, workers: int, folder) -> dict:
     folder = Path(folder)
     pending = folder / PENDING
     pending.mkdir(parents=True, exist_ok=True)
-    t0, load0 = time.perf_counter(), os.getloadavg()[0]
-    full = run_on_pool(_full, None, workers, n=n)
-    full["host"]["scheduler"] = False
-    text = json.dumps(full, indent=1)
-    (pending / FULL_FILE.name).write_text(text, encoding="utf-8")
-    full = json.loads(text)                # the studies on it read what the book reads
-    done = {"full study": {"file": FULL_FILE.name, "seconds": full["seconds"],
-                           "cpu_seconds": full["host"]["cpu_seconds"]}}
-    print(f"part two: the full study took {full['seconds']:.0f} s", file=sys.stderr, flush=True)
+    load0 = os.getloadavg()[0]
+    reused = []
+
+    def run(name, module, path, compute, n=None):
+        # read back while the studies before it were read back too; else compute
+        res = _reusable(path, module, n) if resume and len(reused) == len(done) else None
+        if res is None:
+            res = compute()
+            path.write_text(json.dumps(res, indent=1) + "\n", encoding="utf-8")
+            print(f"part two: {name} took {res['seconds']:.0f} s", file=sys.stderr, flush=True)
+        else:
+            reused.append(name)
+            print(f"part two: {name} read back from {path}", file=sys.stderr, flush=True)
+        done[name] = {"file": path.name, "seconds": res["seconds"], "cpu_seconds": res["host"]["cpu_seconds"]}
+        return res
+
+    def full_study():
+        res = run_on_pool(_full, None, workers, n=n)
+        res["host"]["scheduler"] = False
+        return res
+
+    done = {}
+    run("full study", "fdsc.paper.pays.disturbance_law_full", pending / FULL_FILE.name, full_study, n)
+    # the studies on it read what the book reads: the file, not the object in memory
+    full = json.loads((pending / FULL_FILE.name).read_text(encoding="utf-8"))
     for name, module, function, file in STUDIES:
         mod = importlib.import_module(module)
         study = getattr(mod, function)
-        res = run_on_pool(study, full, workers, **_sizes(study, n))
-        path = pending / getattr(mod, file).name
-        path.write_text(json.dumps(res, indent=1) + "\n", encoding="utf-8")
-        done[name] = {"file": path.name, "seconds": res["seconds"], "cpu_seconds": res["host"]["cpu_seconds"]}
-        print(f"part two: {name} took {res['seconds']:.0f} s", file=sys.stderr, flush=True)
-    for f in [FULL_FILE.name, *(v["file"] for k, v in done.items() if k != "full study")]:
+        run(name, module, pending / getattr(mod, file).name,
+            lambda study=study: run_on_pool(study, full, workers, **_sizes(study, n)))
+    for f in (v["file"] for v in done.values()):
         (pending / f).replace(folder / f)
     pending.rmdir()
     return {"commit": full["commit"], "fingerprint": full["fingerprint"], "n": n, "studies": done,
-            "seconds": round(time.perf_counter() - t0, 1),
+            "seconds": round(sum(v["seconds"] for v in done.values()), 1), "resumed": reused,
             "host": {"cpus": os.cpu_count(), "workers": workers, "load_before": round(load0, 2),
                      "load_after": round(os.getloadavg()[0], 2)}}
 
 
 def main(argv=None) -> int:
-    """``python -m fdsc part-two [--n N] [--workers W] [--out DIR | --replace]``: every study of
-    Part II at this commit (module docstring), written to DIR (default ``out``) or, with
-    ``--replace``, over the stored studies the book reads (and the fixed choice the record reads).
+    """``python -m fdsc part-two [--n N] [--workers W] [--out DIR | --replace] [--resume]``: every
+    study of Part II at this commit (module docstring), written to DIR (default ``out``) or, with
+    ``--replace``, over the stored studies the book reads (and the fixed choice the record reads);
+    ``--resume`` takes up a stopped run.
 
     Parameters
     ----------
@@ -134,13 +170,15 @@ def main(argv=None) -> int:
     ap.add_argument("--out", default="out", help="the folder to write (default out)")
     ap.add_argument("--replace", action="store_true",
                     help=f"write the stored studies in {RUN_FILE.parent}, which the book reads")
+    ap.add_argument("--resume", action="store_true",
+                    help="read back the studies a stopped run left at this commit, compute the rest")
     args = ap.parse_args(argv)
     if args.n < N_MIN:
         ap.error(f"--n must be at least {N_MIN}, but found {args.n}")
     if args.workers < 1:
         ap.error(f"--workers must be at least 1, but found {args.workers}")
     folder = REPO / RUN_FILE.parent if args.replace else Path(args.out)
-    record = part_two(args.n, args.workers, folder)
+    record = part_two(args.n, args.workers, folder, resume=args.resume)
     (folder / RUN_FILE.name).write_text(json.dumps(record, indent=1) + "\n", encoding="utf-8")
     if args.replace:
         from fdsc.paper.pays.stored_study import load_full
