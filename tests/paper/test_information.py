@@ -158,7 +158,9 @@ def test_the_adaptive_laws_noisy_energy_recomputes_on_a_stored_draw(adapt, full)
     i = adapt["generic"]["test_indices"][0]
     e = ar.adaptive_energy("generic", i, full["seed"], tuple(nz["setting"]), dz["optimal"].controller,
                            nz["variance"], nz["base_noise_power"])
-    assert e == pytest.approx(nz["energies"][0], rel=1e-6)
+    # the base is redesigned here (an H2 design and a reduction, whose rounding differs between hosts
+    # and BLAS threads), as the optimal controller's energies above: agreement to 1e-4, not to the last digits
+    assert e == pytest.approx(nz["energies"][0], rel=1e-4)
 
 
 def test_the_recheck_of_a_level_where_the_law_does_not_predict_recomputes_the_reference(info, full):
