@@ -30,6 +30,10 @@ KIND_STYLE = {"bound": ("k", "D"), "reference": ("#7f7f7f", "s"), "realizable la
               "fixed controller": ("#e69f00", "^")}
 
 
+# a label's white ground: the reference line at ×1 does not strike a label through
+_LABEL_BOX = {"facecolor": "white", "edgecolor": "none", "pad": 0.6, "alpha": 0.85}
+
+
 def plot_ladder(summary: dict, ax=None, *, xlim=None, words=None, legend=True):
     """One example's ladder: per rung (top: the limit) the median ratio to the best fixed
     controller (x, ŵ) with its bootstrap 95 % interval, on a log axis; a rung beyond the axis is
@@ -68,11 +72,12 @@ def plot_ladder(summary: dict, ax=None, *, xlim=None, words=None, legend=True):
             ax.annotate("", xy=(edge, y), xytext=(edge / 1.12 if m > hi else edge * 1.12, y),
                         arrowprops={"arrowstyle": "->", "color": color, "lw": 1.5})
             ax.text(edge / 1.14 if m > hi else edge * 1.14, y, times(m),
-                    ha="right" if m > hi else "left", va="center", fontsize=8.5, color=color)
+                    ha="right" if m > hi else "left", va="center", fontsize=8.5, color=color, bbox=_LABEL_BOX)
             continue
         ax.plot([max(a, lo), min(b, hi)], [y, y], color=color, lw=2.5, alpha=0.6, solid_capstyle="butt")
         ax.plot(m, y, marker=marker, color=color, ms=7, ls="none")
-        ax.text(min(b, hi) * 1.02, y, times(m), va="center", fontsize=8.5, color=color)  # as the prose
+        ax.text(min(b, hi) * 1.02, y, times(m), va="center", fontsize=8.5, color=color,  # as the prose
+                bbox=_LABEL_BOX)
     ax.axvline(1.0, color="k", lw=0.8)
     ax.set_xscale("log")
     ax.set_xlim(lo, hi)
