@@ -364,10 +364,11 @@ def _summary_claims(sweep_rows, lf, hf, study):
     # every scenario of the simulation section against the comparator set (the best fixed
     # controller of each case: the open loop, the paper's three fixed gains, the best HF design),
     # and, labelled as such, among the paper's four controllers
-    from fdsc.paper.reproduced.paper_cases import baselines, chosen_runs
+    from fdsc.paper.reproduced.chosen_cases import chosen_energies
+    from fdsc.paper.reproduced.paper_cases import baselines
 
     scen = [(s.label, s.energy) for s in baselines().scenarios]
-    ch = chosen_runs()
+    ch = chosen_energies()
     e_ch = ch["stationary"] + ch["mixed"] + ch["piecewise"]
     vs_chosen = [e["FDSC"] / c for (_, e), c in zip(scen, e_ch, strict=True)]
     wins_chosen = sum(beats(r) for r in vs_chosen)

@@ -395,10 +395,11 @@ def against_comparators() -> dict:
     dict
         ``{"mixed": ComparatorCheck, "piecewise": ComparatorCheck}``.
     """
-    from fdsc.paper.reproduced.paper_cases import baselines, chosen_runs
+    from fdsc.paper.reproduced.chosen_cases import chosen_energies
+    from fdsc.paper.reproduced.paper_cases import baselines
     from fdsc.paper.shared.comparators import best_fixed
 
-    base, chosen = baselines(), chosen_runs()
+    base, chosen = baselines(), chosen_energies()
     out = {}
     for family in ("mixed", "piecewise"):
         scen = base.family(family)

@@ -249,11 +249,12 @@ def against_comparators() -> dict:
     dict
         ``{"LF": StationaryComparison, "HF": StationaryComparison}``.
     """
-    from fdsc.paper.reproduced.paper_cases import baselines, chosen_runs
+    from fdsc.paper.reproduced.chosen_cases import chosen_energies
+    from fdsc.paper.reproduced.paper_cases import baselines
     from fdsc.paper.shared.comparators import best_fixed
 
     out = {}
-    chosen = chosen_runs()
+    chosen = chosen_energies()
     for scen, e in zip(baselines().family("stationary"), chosen["stationary"], strict=True):
         name, energy = best_fixed(scen.energy, "aircraft")
         out[scen.label] = StationaryComparison(scen.label, name, float(energy), float(scen.energy["FDSC"]),
