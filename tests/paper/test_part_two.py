@@ -68,14 +68,22 @@ def test_a_smaller_full_study_asks_fewer_draws_of_the_others():
     assert part_two._sizes(information.information_study, 4) == {"n_test": 2, "n_train": 1}
 
 
-def test_the_files_wait_untracked_until_the_last_study_ends(tmp_path, monkeypatch):
-    # every study records whether the tree was clean: no output may land in the folder before the end
+def _two_fake_studies(monkeypatch, fake_pool, a, b):
+    """Part II's studies replaced by two stand-ins, A and B, run by ``fake_pool``."""
     import sys
     import types
     from pathlib import Path
 
     from fdsc.paper.pays import study_command
 
+    monkeypatch.setattr(study_command, "run_on_pool", fake_pool)
+    monkeypatch.setitem(sys.modules, "fake_a", types.SimpleNamespace(a=a, FILE=Path("book/data/a.json")))
+    monkeypatch.setitem(sys.modules, "fake_b", types.SimpleNamespace(b=b, FILE=Path("book/data/b.json")))
+    monkeypatch.setattr(part_two, "STUDIES", (("A", "fake_a", "a", "FILE"), ("B", "fake_b", "b", "FILE")))
+
+
+def test_the_files_wait_untracked_until_the_last_study_ends(tmp_path, monkeypatch):
+    # every study records whether the tree was clean: no output may land in the folder before the end
     seen = []
 
     def fake_pool(study, full, workers, **kwargs):
@@ -90,10 +98,7 @@ def test_the_files_wait_untracked_until_the_last_study_ends(tmp_path, monkeypatc
     def b(full, *, executor=None, n_test=24, n_train=4):
         return {}
 
-    monkeypatch.setattr(study_command, "run_on_pool", fake_pool)
-    monkeypatch.setitem(sys.modules, "fake_a", types.SimpleNamespace(a=a, FILE=Path("book/data/a.json")))
-    monkeypatch.setitem(sys.modules, "fake_b", types.SimpleNamespace(b=b, FILE=Path("book/data/b.json")))
-    monkeypatch.setattr(part_two, "STUDIES", (("A", "fake_a", "a", "FILE"), ("B", "fake_b", "b", "FILE")))
+    _two_fake_studies(monkeypatch, fake_pool, a, b)
     rec = part_two.part_two(8, 1, tmp_path)
     assert seen == [[part_two.PENDING]] * 3                               # only the pending folder, each time
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.json", "b.json", "disturbance_law_full.json"]
@@ -103,11 +108,6 @@ def test_the_files_wait_untracked_until_the_last_study_ends(tmp_path, monkeypatc
 
 
 def test_a_stopped_run_is_taken_up_from_its_first_missing_or_stale_study(tmp_path, monkeypatch):
-    import sys
-    import types
-    from pathlib import Path
-
-    from fdsc.paper.pays import study_command
     from fdsc.paper.shared import cache, environment
 
     computed, fail = [], {"B"}
@@ -128,12 +128,9 @@ def test_a_stopped_run_is_taken_up_from_its_first_missing_or_stale_study(tmp_pat
     def b(full, *, executor=None):
         return {}
 
-    monkeypatch.setattr(study_command, "run_on_pool", fake_pool)
+    _two_fake_studies(monkeypatch, fake_pool, a, b)
     monkeypatch.setattr(environment, "build_commit", lambda: "c")
     monkeypatch.setattr(cache, "study_fingerprint", lambda module: prints[module])
-    monkeypatch.setitem(sys.modules, "fake_a", types.SimpleNamespace(a=a, FILE=Path("book/data/a.json")))
-    monkeypatch.setitem(sys.modules, "fake_b", types.SimpleNamespace(b=b, FILE=Path("book/data/b.json")))
-    monkeypatch.setattr(part_two, "STUDIES", (("A", "fake_a", "a", "FILE"), ("B", "fake_b", "b", "FILE")))
     with pytest.raises(KeyboardInterrupt):
         part_two.part_two(8, 1, tmp_path)
     assert computed == ["full", "A"] and (tmp_path / part_two.PENDING / "a.json").is_file()

@@ -5,8 +5,8 @@ The controller is fixed, so its loop is linear and time-invariant: its energy fr
 the paper's tones (or pieces of tones) is the closed form of the loop's modal form
 (:func:`fdsc._closed_energy.closed_form_energies`, the method that scores Part II's fixed
 controllers), not a run of the switched loops' simulator. The simulator at the book's step
-gives the same energies to rounding (about 1e-12 relative: tested), in a few seconds per case
-instead of milliseconds for all of them.
+gives the same energies to rounding (about 1e-12 relative: tested), but takes about a second per
+case where the closed form takes milliseconds for all 34.
 """
 
 from fdsc._closed_energy import closed_form_energies
